@@ -1,0 +1,62 @@
+"""Masonry arch statics: geometry, thrust-line limit analysis, four-hinge mechanism (issue 3).
+
+Typical use::
+
+    from rockarch.arch import catenary, analyse
+    res = analyse(catenary(span=10.0, rise=3.0, thickness=0.25))
+    res.ap_min, res.p, res.delta, res.hinges
+"""
+
+from rockarch.arch.fourhinge import (
+    ArchMechanism,
+    FourHinge,
+    Kinematics,
+    analyse,
+    closure_limit,
+    driving_moment,
+    generalized_inertia,
+    generalized_inertia_du,
+    kinematics,
+    mechanism_from_hinges,
+    neutral_position,
+    neutral_position_linear,
+    potential,
+    potential_du,
+)
+from rockarch.arch.geometry import (
+    CONTINUOUS_BLOCKS,
+    SHAPES,
+    Arch,
+    HorizontalWeights,
+    Voussoirs,
+    catenary,
+    catenary_parameter,
+    circular,
+    elliptical,
+    from_contour,
+    horizontal_weights,
+    make_arch,
+    mass_per_horizontal_length,
+    pointed,
+    polyline,
+    voussoirs,
+    weighted_catenary,
+)
+from rockarch.arch.thrust import (
+    Hinge,
+    ThrustResult,
+    is_admissible,
+    limit_analysis,
+    minimum_thickness,
+)
+
+__all__ = [
+    "CONTINUOUS_BLOCKS", "SHAPES", "Arch", "ArchMechanism", "FourHinge", "Hinge",
+    "HorizontalWeights", "Kinematics", "ThrustResult", "Voussoirs", "analyse", "catenary",
+    "catenary_parameter", "circular", "closure_limit", "driving_moment", "elliptical",
+    "from_contour", "generalized_inertia", "generalized_inertia_du", "horizontal_weights",
+    "is_admissible", "kinematics", "limit_analysis", "make_arch", "mass_per_horizontal_length",
+    "mechanism_from_hinges", "minimum_thickness", "neutral_position",
+    "neutral_position_linear", "pointed", "polyline", "potential", "potential_du", "voussoirs",
+    "weighted_catenary",
+]
