@@ -131,7 +131,7 @@ def ricker(ap: float, period: float) -> GroundMotion:
     """Ricker wavelet of peak ap and dominant period T = 1/f_p, centred at t0 = 1.5·T.
 
     a = ap·(1 − 2π²f_p²τ²)·exp(−π²f_p²τ²), τ = t − t0, on [0, 3T] (the tails beyond are
-    below 1e-9·ap).
+    below 1e-8·ap).
     """
     ap, period = positive("amplitude ap", ap), positive("period T", period)
     fp = 1.0 / period

@@ -1,0 +1,221 @@
+"""The ``rockarch`` command line (typer). Every command accepts ``--json``.
+
+Errors in the input print one line on stderr (``error: ...``) and exit with status 2.
+"""
+
+from __future__ import annotations
+
+import sys
+from enum import Enum
+from pathlib import Path
+
+import numpy as np
+import typer
+
+from rockarch._cli_util import fail, guarded, print_json
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    help="Seismic overturning assessment of rocking blocks and masonry arches.",
+)
+simulate_app = typer.Typer(no_args_is_help=True,
+                           help="Simulate one structure on one ground motion.")
+app.add_typer(simulate_app, name="simulate")
+
+
+class Signal(str, Enum):
+    sine = "sine"
+    square = "square"
+    step = "step"
+    halfsine = "halfsine"
+    harmonic = "harmonic"
+    ricker = "ricker"
+
+
+class System(str, Enum):
+    block = "block"
+
+
+def _float_list(name: str, text: str) -> np.ndarray:
+    try:
+        vals = [float(v) for v in text.replace(";", ",").split(",") if v.strip()]
+    except ValueError:
+        raise ValueError(
+            f"{name} must be a comma-separated list of numbers, got {text!r}") from None
+    if not vals:
+        raise ValueError(f"{name} is empty")
+    return np.array(vals)
+
+
+def _shape(signal: Signal | None, period: float | None, cycles: int, record: Path | None,
+           units: str | None):
+    """The ground-motion shape (peak 1 for pulses; the record as read)."""
+    from rockarch import motion as mo
+    from rockarch.records import read_record
+
+    if record is not None and signal is not None:
+        raise ValueError("give either --record or --signal/--period, not both")
+    if record is not None:
+        return read_record(record, units=units)
+    if signal is None:
+        raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
+    if period is None:
+        raise ValueError(f"--signal {signal.value} needs --period T (seconds)")
+    return mo.pulse(signal.value, 1.0, period, cycles)
+
+
+def _p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int):
+    if p is not None:
+        if p_min is not None or p_max is not None:
+            raise ValueError("give either --p LIST or --p-min/--p-max/--p-steps, not both")
+        return _float_list("--p", p)
+    if p_min is None or p_max is None:
+        raise ValueError("give the p values: --p 0.5,1,2 or --p-min A --p-max B --p-steps N")
+    if not (0 < p_min < p_max):
+        raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
+    if p_steps < 2:
+        raise ValueError("--p-steps must be >= 2")
+    return np.linspace(p_min, p_max, p_steps)
+
+
+@app.command()
+@guarded
+def oas(
+    system: System = typer.Option(System.block, help="Structure whose OAS is computed."),
+    alpha: float = typer.Option(None, help="Block slenderness angle atan(B/H) [rad]."),
+    signal: Signal = typer.Option(None, help="Pulse shape (paper Fig. 14)."),
+    period: float = typer.Option(None, help="Pulse period T [s]."),
+    cycles: int = typer.Option(3, help="Number of cycles of --signal harmonic."),
+    record: Path = typer.Option(None, help="Record file (.AT2 or two-column time/acc)."),
+    units: str = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, "
+                              "cm/s2."),
+    p: str = typer.Option(None, "--p", help="Comma-separated p values [1/s]."),
+    p_min: float = typer.Option(None, help="Smallest p of a linear grid [1/s]."),
+    p_max: float = typer.Option(None, help="Largest p of a linear grid [1/s]."),
+    p_steps: int = typer.Option(50, help="Number of p values of the grid."),
+    ratio_min: float = typer.Option(1.0, help="Smallest ap/ap,min."),
+    ratio_max: float = typer.Option(5.0, help="Largest ap/ap,min."),
+    ratio_steps: int = typer.Option(81, help="Number of ap/ap,min values."),
+    tol: float = typer.Option(1e-3, help="Bisection tolerance of the boundary (ratio)."),
+    restitution: float = typer.Option(None, help="Coefficient of restitution in [0, 1] "
+                                      "(default: Housner's 1 - 1.5 sin²alpha)."),
+    t_free: float = typer.Option(10.0, help="Free rocking after the motion ends [s]."),
+    g: float = typer.Option(9.81, help="Acceleration of gravity [m/s²]."),
+    out: Path = typer.Option(None, help="Write the OAS to this NetCDF file."),
+    plot: Path = typer.Option(None, help="Write a PNG plot of the OAS."),
+    json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
+    progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
+) -> None:
+    """Overturning acceleration spectrum (OAS) over p × ap/ap,min for one ground motion.
+
+    Pulses have peak ap = ratio·ap,min; a record is scaled so that its PGA = ratio·ap,min.
+    """
+    from rockarch import spectra
+
+    if alpha is None:
+        raise ValueError("--alpha is required for --system block")
+    sysobj = spectra.BlockSystem(alpha=alpha, g=g, restitution=restitution, t_free=t_free)
+    shape = _shape(signal, period, cycles, record, units)
+    ps = _p_grid(p, p_min, p_max, p_steps)
+    if ratio_steps < 1:
+        raise ValueError("--ratio-steps must be >= 1")
+    if not (0 <= ratio_min <= ratio_max):
+        raise ValueError(f"need 0 <= --ratio-min <= --ratio-max, got {ratio_min}, {ratio_max}")
+    ratios = np.linspace(ratio_min, ratio_max, ratio_steps) if ratio_steps > 1 \
+        else np.array([ratio_min])
+    for path in (out, plot):
+        if path is not None and not path.resolve().parent.is_dir():
+            raise ValueError(f"{path.parent}: directory does not exist")
+    ds = spectra.compute_oas(sysobj, shape, ps, ratios, tol=tol,
+                             progress=progress and sys.stderr.isatty())
+    if out is not None:
+        spectra.save(ds, out)
+    if plot is not None:
+        from rockarch.plot import plot_oas, save_figure
+
+        ax = plot_oas(ds)
+        save_figure(ax.figure, plot)
+    if json_out:
+        print_json({
+            "p": ds["p"].values,
+            "ratio": ds["ratio"].values,
+            "overturned": ds["overturned"].values,
+            "boundary": ds["boundary"].values,
+        })
+        return
+    typer.echo(f"OAS of block alpha={alpha:g} rad for {shape.name}")
+    typer.echo(f"{'p [1/s]':>10}  {'boundary ap/ap,min':>20}")
+    for pv, bv in zip(ds["p"].values, ds["boundary"].values, strict=True):
+        txt = f"{bv:.4f}" if np.isfinite(bv) else f"> {ratios[-1]:g} (none in range)"
+        typer.echo(f"{pv:>10.4g}  {txt:>20}")
+    for path in (out, plot):
+        if path is not None:
+            typer.echo(f"wrote {path}")
+
+
+@simulate_app.command("block")
+@guarded
+def simulate_block(
+    alpha: float = typer.Option(None, help="Slenderness angle atan(B/H) [rad]."),
+    p: float = typer.Option(None, "--p", help="Frequency parameter [1/s]."),
+    width: float = typer.Option(None, help="Full width B [m] (instead of --p/--alpha)."),
+    height: float = typer.Option(None, help="Full height H [m] (instead of --p/--alpha)."),
+    signal: Signal = typer.Option(None, help="Pulse shape (paper Fig. 14)."),
+    period: float = typer.Option(None, help="Pulse period T [s]."),
+    cycles: int = typer.Option(3, help="Number of cycles of --signal harmonic."),
+    record: Path = typer.Option(None, help="Record file (.AT2 or two-column time/acc)."),
+    units: str = typer.Option(None, help="Units of a two-column record."),
+    ratio: float = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min."),
+    restitution: float = typer.Option(None, help="Coefficient of restitution in [0, 1]."),
+    t_free: float = typer.Option(10.0, help="Free rocking after the motion ends [s]."),
+    g: float = typer.Option(9.81, help="Acceleration of gravity [m/s²]."),
+    plot: Path = typer.Option(None, help="Write a PNG of theta/alpha and a_g over time."),
+    json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Simulate a rigid block (exact Housner equation) on a pulse or a record."""
+    from rockarch.block import RigidBlock, simulate
+
+    if width is not None or height is not None:
+        if p is not None or alpha is not None:
+            raise ValueError("give either --width/--height or --p/--alpha, not both")
+        if width is None or height is None:
+            raise ValueError("--width and --height go together")
+        blk = RigidBlock.from_dimensions(width, height, g, restitution)
+    else:
+        if p is None or alpha is None:
+            raise ValueError("give the block: --p P --alpha A (or --width B --height H)")
+        blk = RigidBlock(p, alpha, g, restitution)
+    if not (ratio >= 0 and np.isfinite(ratio)):
+        raise ValueError(f"--ratio must be a finite number >= 0, got {ratio}")
+    shape = _shape(signal, period, cycles, record, units)
+    mot = shape.scaled(ratio * blk.ap_min / shape.pga)
+    if plot is not None and not plot.resolve().parent.is_dir():
+        raise ValueError(f"{plot.parent}: directory does not exist")
+    resp = simulate(blk, mot, t_free=t_free)
+    if plot is not None:
+        from rockarch.plot import plot_response, save_figure
+
+        save_figure(plot_response(resp, mot), plot)
+    if json_out:
+        print_json(resp.summary())
+        return
+    s = resp.summary()
+    typer.echo(f"block p={blk.p:.4g} 1/s alpha={blk.alpha:.4g} rad (B={blk.width:.4g} m, "
+               f"H={blk.height:.4g} m, ap,min={blk.ap_min:.4g} m/s², r={blk.r:.4f})")
+    typer.echo(f"motion: {mot.name}, PGA={mot.pga:.4g} m/s² = {ratio:g} ap,min")
+    if s["overturned"]:
+        typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after {s['impacts']} impacts")
+    else:
+        typer.echo(f"safe: max |theta|/alpha = {s['max_theta_over_alpha']:.4f}, "
+                   f"{s['impacts']} impacts")
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
+
+
+# --- arch statics (rockarch.arch) -------------------------------------------------------------
+from rockarch.arch.cli import arch as _arch_command  # noqa: E402
+
+app.command("arch")(_arch_command)
+
+__all__ = ["app", "fail"]

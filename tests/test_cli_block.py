@@ -1,0 +1,103 @@
+"""CLI contract of `rockarch oas` and `rockarch simulate block` (issue 2), and bad input."""
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from rockarch.cli import app
+from rockarch.records import el_centro
+
+runner = CliRunner()
+REC = "src/rockarch/data/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
+
+
+def _json(args):
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def test_oas_json_contract():
+    out = _json(["oas", "--system", "block", "--alpha", "0.1", "--signal", "sine",
+                 "--period", "0.5", "--p", "0.5,1,2,4", "--ratio-min", "1", "--ratio-max",
+                 "5", "--ratio-steps", "81", "--json"])
+    assert set(out) == {"p", "ratio", "overturned", "boundary"}
+    assert out["p"] == [0.5, 1.0, 2.0, 4.0]
+    assert len(out["ratio"]) == 81 and out["ratio"][0] == 1.0 and out["ratio"][-1] == 5.0
+    assert np.array(out["overturned"]).shape == (4, 81)
+    assert out["boundary"][0] is None  # p = 0.5 never overturns below 5 ap,min
+    for row, b in zip(out["overturned"], out["boundary"], strict=True):
+        if b is not None:
+            k = row.index(True)
+            assert out["ratio"][max(k - 1, 0)] < b <= out["ratio"][k]
+
+
+def test_oas_record_grid_files(tmp_path):
+    nc, png = tmp_path / "o.nc", tmp_path / "o.png"
+    out = _json(["oas", "--alpha", "0.1", "--record", REC, "--p-min", "1", "--p-max", "5",
+                 "--p-steps", "5", "--ratio-steps", "11", "--out", str(nc), "--plot",
+                 str(png), "--restitution", "0.95", "--t-free", "5", "--g", "9.81", "--json"])
+    assert out["p"] == [1.0, 2.0, 3.0, 4.0, 5.0]
+    assert nc.stat().st_size > 0 and png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_simulate_block_json_contract_and_plot(tmp_path):
+    png = tmp_path / "s.png"
+    out = _json(["simulate", "block", "--alpha", "0.15", "--p", "2", "--signal", "sine",
+                 "--period", "1", "--ratio", "2", "--json", "--plot", str(png)])
+    assert set(out) == {"overturned", "t_overturn", "max_theta_over_alpha", "impacts"}
+    assert out["overturned"] is True and 0 < out["t_overturn"] < 11
+    assert png.exists()
+    safe = _json(["simulate", "block", "--alpha", "0.15", "--p", "2", "--record", REC,
+                  "--ratio", "0.99", "--json"])
+    assert safe == {"overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
+                    "impacts": 0}
+
+
+def test_record_scaling_in_cli_matches_api():
+    from rockarch.block import RigidBlock, simulate
+
+    out = _json(["simulate", "block", "--alpha", "0.1", "--p", "3", "--record", REC,
+                 "--ratio", "1.3", "--json"])
+    b = RigidBlock(3.0, 0.1)
+    rec = el_centro()
+    api = simulate(b, rec.scaled_to_pga(1.3 * b.ap_min)).summary()
+    assert out == json.loads(json.dumps(api))
+
+
+@pytest.mark.parametrize(
+    "args, msg",
+    [
+        (["oas", "--alpha", "0.1", "--signal", "sine", "--p", "1"], "needs --period"),
+        (["oas", "--alpha", "2", "--signal", "sine", "--period", "1", "--p", "1"], "alpha"),
+        (["oas", "--alpha", "0.1", "--signal", "sine", "--period", "1", "--p", "0,1"], "p"),
+        (["oas", "--alpha", "0.1", "--signal", "sine", "--period", "1"], "give the p values"),
+        (["oas", "--alpha", "0.1", "--signal", "sine", "--period", "1", "--p", "1",
+          "--restitution", "1.5"], "restitution"),
+        (["oas", "--alpha", "0.1", "--record", "/no/such.AT2", "--p", "1"], "no such file"),
+        (["oas", "--alpha", "0.1", "--p", "1"], "give a ground motion"),
+        (["simulate", "block", "--alpha", "0.1", "--p", "-1", "--signal", "step",
+          "--period", "1", "--ratio", "2"], "p must be"),
+        (["simulate", "block", "--width", "0", "--height", "1", "--signal", "step",
+          "--period", "1", "--ratio", "2"], "width B"),
+        (["simulate", "block", "--alpha", "0.1", "--p", "1", "--signal", "step",
+          "--period", "-1", "--ratio", "2"], "period T"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(args, msg):
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2
+    lines = [ln for ln in res.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error:") and msg in lines[0]
+
+
+def test_bad_record_file_exits_2(tmp_path):
+    bad = tmp_path / "bad.AT2"
+    bad.write_text("PEER\nx\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 3, DT= .01 SEC\n1 2\n")
+    nc = tmp_path / "o.nc"
+    res = runner.invoke(app, ["oas", "--alpha", "0.1", "--record", str(bad), "--p", "1",
+                              "--out", str(nc)])
+    assert res.exit_code == 2 and "NPTS=3" in res.stderr
+    assert not nc.exists()  # nothing half-written

@@ -1,0 +1,83 @@
+"""Record readers: PEER NGA .AT2 (new and old headers), two-column text, bad files."""
+
+import numpy as np
+import pytest
+
+from rockarch.records import G_STANDARD, el_centro, read_at2, read_record, read_two_column
+
+NEW = """PEER NGA STRONG MOTION DATABASE RECORD
+Test event, 1/1/2000, Station, 90
+ACCELERATION TIME SERIES IN UNITS OF G
+NPTS=      7, DT=   .0200 SEC
+  .1000000E-01  -.2000000E-01   .3000000E-01   .0000000E+00  -.5000000E-01
+  .1000000E-01   .0000000E+00
+"""
+OLD = """PEER STRONG MOTION DATABASE RECORD. PROCESSING BY PACIFIC ENGINEERING.
+TEST 1/1/80 0000, STATION, 090
+ACCELERATION TIME HISTORY IN UNITS OF G
+     7    0.02000    NPTS, DT
+  .1000000E-01  -.2000000E-01   .3000000E-01   .0000000E+00  -.5000000E-01
+  .1000000E-01   .0000000E+00
+"""
+
+
+def _write(tmp_path, name, text):
+    f = tmp_path / name
+    f.write_text(text)
+    return f
+
+
+@pytest.mark.parametrize("text", [NEW, OLD], ids=["nga-west2", "old-nga"])
+def test_both_header_styles(tmp_path, text):
+    m = read_at2(_write(tmp_path, "x.AT2", text))
+    assert m.t.size == 7
+    assert np.allclose(np.diff(m.t), 0.02)
+    assert m.a[2] == pytest.approx(0.03 * G_STANDARD)
+    assert m.pga == pytest.approx(0.05 * G_STANDARD)
+
+
+def test_bundled_el_centro_matches_its_provenance():
+    m = el_centro()
+    # ../shared/records/README.md: dt 0.01 s, 5372 points, PGA 0.281 g
+    assert m.t.size == 5372
+    assert m.t[1] - m.t[0] == pytest.approx(0.01)
+    assert m.pga / G_STANDARD == pytest.approx(0.281, abs=5e-4)
+    assert "El Centro" in m.name
+
+
+def test_two_column_units_and_header(tmp_path):
+    f = _write(tmp_path, "rec.txt", "time acc\n0.0 0.1\n0.01, 0.2\n0.02\t-0.3\n0.03 0.0\n")
+    m = read_two_column(f, units="g")
+    assert m.a[2] == pytest.approx(-0.3 * G_STANDARD)
+    assert read_record(f).a[2] == pytest.approx(-0.3)  # m/s2 by default
+
+
+@pytest.mark.parametrize(
+    "name, text, msg",
+    [
+        ("a.AT2", NEW.replace("NPTS=      7", "NPTS=      9"), "NPTS=9 but the file holds 7"),
+        ("b.AT2", "\n".join(NEW.splitlines()[:4]) + "\n", "holds 0 values"),
+        ("b1.AT2", "\n".join(NEW.splitlines()[:4]).replace("7,", "1,") + "\n .1\n",
+         "at least 2 samples"),
+        ("c.AT2", NEW.replace("-.2000000E-01", "NaN"), "not a finite number"),
+        ("d.AT2", NEW.replace("ACCELERATION", "VELOCITY"), "not an acceleration record"),
+        ("e.AT2", NEW.replace("NPTS=      7, DT=   .0200 SEC", "garbage"), "NPTS and DT"),
+        ("f.AT2", NEW.replace(".3000000E-01", "abc"), "not all numbers"),
+        ("g.AT2", "hello\n", "fewer than 4 header lines"),
+        ("h.txt", "0 1\n0.01 2\n0.03 3\n0.04 1\n", "non-uniform time step"),
+        ("i.txt", "0 1\n", "at least 2 samples"),
+        ("j.txt", "", "at least 2 samples"),
+        ("k.txt", "0 0\n0.01 0\n", "every sample is zero"),
+        ("l.txt", "0 1\n0.01 x\n", "not two numbers"),
+    ],
+)
+def test_bad_files_give_one_clear_message(tmp_path, name, text, msg):
+    with pytest.raises(ValueError, match=msg):
+        read_record(_write(tmp_path, name, text))
+
+
+def test_missing_file_and_directory(tmp_path):
+    with pytest.raises(ValueError, match="no such file"):
+        read_record(tmp_path / "nope.AT2")
+    with pytest.raises(ValueError, match="is a directory"):
+        read_record(tmp_path)

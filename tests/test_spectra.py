@@ -1,0 +1,101 @@
+"""OAS: grid map, boundary bisection without monotonicity, NetCDF round trip."""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from rockarch import motion as mo
+from rockarch import spectra
+from rockarch.block import simulate_batch
+from rockarch.records import el_centro
+
+
+@dataclass(frozen=True)
+class Islands:
+    """A fake system that overturns for ratio in [2, 3) ∪ [3.5, ∞): a safe island."""
+
+    name: str = "islands"
+
+    def run(self, motion, p, ratio):
+        r = np.asarray(ratio, dtype=float)
+        o = ((r >= 2.0) & (r < 3.0)) | (r >= 3.5)
+        return o, o.astype(float)
+
+    def attrs(self):
+        return {"kind": "test"}
+
+
+def test_boundary_is_lowest_overturning_and_islands_stay():
+    ratio = np.linspace(1.0, 5.0, 17)  # step 0.25
+    ds = spectra.compute_oas(Islands(), mo.sine(1, 1), [1.0, 2.0], ratio, tol=1e-4,
+                             progress=False)
+    # bisection between 1.75 (safe) and 2.0: converges on 2.0 from above within tol
+    assert ds.boundary.values == pytest.approx([2.0, 2.0], abs=1e-4)
+    assert np.all(ds.boundary.values >= 2.0)  # the boundary is an overturning ratio
+    row = ds.overturned.values[0]
+    assert not row[ratio == 3.25][0]  # the safe island above the boundary is kept
+    assert row[ratio == 3.5][0] and row[ratio == 2.5][0]
+
+
+def test_no_refinement_gives_first_grid_cell_and_nan_when_safe():
+    ratio = np.array([1.0, 1.5, 2.5])
+    ds = spectra.compute_oas(Islands(), mo.sine(1, 1), [1.0], ratio, tol=0, progress=False)
+    assert ds.boundary.values[0] == 2.5
+    ds = spectra.compute_oas(Islands(), mo.sine(1, 1), [1.0], [1.0, 1.5], progress=False)
+    assert np.isnan(ds.boundary.values[0])
+
+
+def test_block_oas_map_equals_batch_runs_and_roundtrips(tmp_path):
+    rec = el_centro()
+    p = np.linspace(1.0, 6.0, 6)
+    ratio = np.linspace(1.0, 3.0, 9)
+    system = spectra.BlockSystem(alpha=0.1)
+    ds = spectra.compute_oas(system, rec, p, ratio, progress=False)
+    pp, rr = np.meshgrid(p, ratio, indexing="ij")
+    direct = simulate_batch(rec, pp, rr, 0.1)
+    assert np.array_equal(ds.overturned.values, direct.overturned)
+    # the refined boundary lies in (last safe grid value, first overturning grid value]
+    for i in range(p.size):
+        row = ds.overturned.values[i]
+        if row.any():
+            k = int(row.argmax())
+            lo = ratio[k - 1] if k else 1.0
+            assert lo < ds.boundary.values[i] <= ratio[k]
+            assert simulate_batch(rec, p[i], ds.boundary.values[i], 0.1).overturned
+    f = tmp_path / "oas.nc"
+    spectra.save(ds, f)
+    back = spectra.load(f)
+    assert back.overturned.dtype == bool
+    assert np.array_equal(back.overturned.values, ds.overturned.values)
+    assert np.allclose(back.boundary.values, ds.boundary.values, equal_nan=True)
+    assert back.attrs["motion_sha256"] == rec.fingerprint()
+    assert not list(tmp_path.glob("*.part"))
+
+
+def test_slender_block_oas_nearly_independent_of_alpha():
+    """Paper Fig. 3a / physics note §2: for slender blocks the OAS hardly depends on alpha;
+    sine pulse boundaries of alpha = 0.02 and 0.05 agree within 1 % (O(α²) effects)."""
+    p = [1.5, 3.0, 6.0]
+    b = [spectra.compute_oas(spectra.BlockSystem(alpha=a), mo.sine(1, 1.0), p,
+                             np.linspace(1, 8, 29), progress=False).boundary.values
+         for a in (0.02, 0.05)]
+    assert np.allclose(b[0], b[1], rtol=1e-2)
+
+
+@pytest.mark.parametrize(
+    "p, ratio, msg",
+    [([2.0, 1.0], [1, 2], "strictly increasing"), ([0.0, 1.0], [1, 2], "p values must be > 0"),
+     ([1.0], [np.nan], "finite"), ([], [1.0], "non-empty")],
+)
+def test_bad_grids(p, ratio, msg):
+    with pytest.raises(ValueError, match=msg):
+        spectra.compute_oas(spectra.BlockSystem(alpha=0.1), mo.sine(1, 1), p, ratio,
+                            progress=False)
+
+
+def test_load_rejects_other_files(tmp_path):
+    f = tmp_path / "x.nc"
+    f.write_text("not netcdf")
+    with pytest.raises(ValueError, match="not a readable NetCDF"):
+        spectra.load(f)
