@@ -1,0 +1,139 @@
+"""Four-hinge mechanism: kinematics, Bv, Bh, A, delta, p, Table 1 (Sect. 5–7, Eq. 12–14)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rockarch.arch import (
+    analyse,
+    catenary,
+    circular,
+    elliptical,
+    generalized_inertia,
+    generalized_inertia_du,
+    kinematics,
+    potential,
+    potential_du,
+)
+
+
+@pytest.fixture(scope="module")
+def circ():
+    return analyse(circular(10, 2.89, 0.346), 40)
+
+
+def test_kinematics_keeps_the_linkage_closed_and_parts_rigid(circ):
+    mech = circ.mechanism
+    u = np.linspace(0, 0.8 * circ.delta, 7)
+    k = kinematics(mech, u)
+    h = mech.hinges
+    ell = np.hypot(*(h[2] - h[1]))
+    assert np.allclose(np.hypot(*(k.h3 - k.h2).T), ell, rtol=1e-12)
+    assert np.allclose(k.v[0], 0.0, atol=1e-14)
+    c = np.stack([k.x, k.y], axis=-1)  # (3, n, 2)
+    assert np.allclose(np.hypot(*(c[1] - k.h2).T), np.hypot(*(mech.centroid[1] - h[1])),
+                       rtol=1e-12)
+    assert np.allclose(np.hypot(*(c[2] - h[3]).T), np.hypot(*(mech.centroid[2] - h[3])),
+                       rtol=1e-12)
+
+
+def test_kinematics_derivatives_match_finite_differences(circ):
+    mech = circ.mechanism
+    u, e = 0.3 * circ.delta, 1e-6
+    k0, kp, km = (kinematics(mech, u + s) for s in (0.0, e, -e))
+    # central differences: truncation ~ e^2 * (third derivative) ~ 1e-12, rounding ~ 1e-10
+    for name in ("x", "y", "phi"):
+        fd = (getattr(kp, name) - getattr(km, name)) / (2 * e)
+        assert np.allclose(getattr(k0, "d" + name), fd, atol=1e-8)
+    a_fd = (generalized_inertia(mech, u + e) - generalized_inertia(mech, u - e)) / (2 * e)
+    assert generalized_inertia_du(mech, u)[0] == pytest.approx(a_fd[0], rel=1e-5)
+    v_fd = (potential(mech, u + e) - potential(mech, u - e)) / (2 * e)
+    assert potential_du(mech, u)[0] == pytest.approx(v_fd[0], rel=1e-7)
+
+
+@pytest.mark.parametrize("arch, blocks, direction", [
+    (catenary(10, 3, 0.25), None, 1),
+    (catenary(10, 3, 0.25), 30, -1),
+    (circular(10, 2.89, 0.346), 20, 1),
+    (elliptical(6, 2.5, 0.4), None, -1),
+])
+def test_virtual_work_agrees_with_the_lp(arch, blocks, direction):
+    res = analyse(arch, blocks, direction=direction)
+    # the LP optimum is a vertex whose duals are the mechanism's hinge rotations: equal to
+    # rounding (1e-9 leaves room for HiGHS's 1e-9 feasibility tolerance)
+    assert res.ap_min_vw == pytest.approx(res.ap_min, rel=1e-8)
+    assert res.Bv > 0 and res.Bh > 0 and res.A > 0
+    assert 0 < res.delta < math.pi / 2
+    assert potential_du(res.mechanism, res.delta)[0] == pytest.approx(0.0, abs=1e-9 * res.Bv)
+
+
+def test_size_effect():
+    # Eq. 11: ap_min, delta, c-constants independent of size; p ~ 1/sqrt(l)
+    r1 = analyse(catenary(1.0, 0.3, 0.03))
+    r2 = analyse(catenary(25.0, 7.5, 0.75))
+    assert r2.ap_min == pytest.approx(r1.ap_min, rel=1e-7)
+    assert r2.delta == pytest.approx(r1.delta, rel=1e-7)
+    assert r2.p * math.sqrt(25.0) == pytest.approx(r1.p, rel=1e-7)
+    assert r2.c1 == pytest.approx(r1.c1, rel=1e-7)
+
+
+def test_n_voussoir_results_converge_to_the_continuous_ones():
+    arch = catenary(10, 3, 0.5)
+    cont = analyse(arch)
+    err = []
+    for n in (25, 100, 400):
+        r = analyse(arch, n)
+        assert r.ap_min >= cont.ap_min * (1 - 1e-9)  # fewer joints: fewer places to hinge
+        err.append(max(abs(r.ap_min / cont.ap_min - 1), abs(r.p / cont.p - 1)))
+    assert err[0] > err[1] > err[2]
+    assert err[2] < 2e-3
+
+
+def test_slender_limit_exact_and_linearised_delta_agree():
+    # as d/l -> 0 the neutral position is small and the linearised dV/du becomes exact
+    r = analyse(catenary(1.0, 0.3, 0.001))
+    assert r.delta_linear == pytest.approx(r.delta, rel=0.02)
+    r = analyse(catenary(1.0, 0.3, 0.05))
+    assert r.delta_linear > 1.4 * r.delta  # thick: the linearisation overshoots
+
+
+# paper Table 1: (f/l, d/l) -> c1, c2, c3, c3', c4
+TABLE1 = {
+    (0.2, 0.0125): (0.219, 0.823, 0.24, 0.28, 0.34), (0.2, 0.025): (0.218, 0.829, 0.22, 0.30, 0.31),
+    (0.2, 0.05): (0.229, 0.853, 0.18, 0.34, 0.25),
+    (0.3, 0.0125): (0.270, 0.897, 0.26, 0.28, 0.40), (0.3, 0.025): (0.267, 0.899, 0.24, 0.29, 0.36),
+    (0.3, 0.05): (0.263, 0.907, 0.22, 0.32, 0.34), (0.3, 0.1): (0.292, 0.944, 0.17, 0.38, 0.27),
+    (0.4, 0.0125): (0.321, 0.983, 0.27, 0.29, 0.45), (0.4, 0.025): (0.318, 0.984, 0.26, 0.30, 0.43),
+    (0.4, 0.05): (0.313, 0.988, 0.24, 0.31, 0.40), (0.4, 0.1): (0.296, 1.006, 0.20, 0.36, 0.34),
+}
+
+
+@pytest.mark.parametrize("key", sorted(TABLE1))
+def test_table1_c2_and_hinge_positions(key):
+    fl, dl = key
+    c1, c2, c3, c3p, c4 = TABLE1[key]
+    r = analyse(catenary(1.0, fl, dl))
+    # c2 (the LP) reproduces the paper to its 3 digits (+-0.0005) plus 0.3 %
+    assert r.c2 == pytest.approx(c2, rel=0.004)
+    # hinges: paper rounds to 0.01; our continuous model places them to 1/2000 of the arc
+    assert r.c3 == pytest.approx(c3, abs=0.011)
+    assert r.c3p == pytest.approx(c3p, abs=0.011)
+    # c1 within 4 % for d/l <= 0.025, within 12 % for the thick arches (see validation.md)
+    assert r.c1 == pytest.approx(c1, rel=0.04 if dl <= 0.025 else 0.12)
+
+
+def test_table1_slender_c1_limit():
+    # Eq. 14 constants are thickness-independent for slender arches: our d/l = 0.001 values
+    # agree with the paper's most slender row (d/l = 0.0125) to 0.5 %
+    for fl, c1 in ((0.2, 0.219), (0.3, 0.270), (0.4, 0.321)):
+        assert analyse(catenary(1.0, fl, 0.001)).c1 == pytest.approx(c1, rel=0.005)
+
+
+def test_sect8_circular_arch():
+    r = analyse(circular(10, 2.89, 0.345))
+    assert r.ap_min == pytest.approx(3.036, rel=0.005)
+    # the paper's own ap_min gives c2 = 3.036*0.289^2/(9.81*0.0345) = 0.749 (Table 2 prints
+    # 0.768, inconsistent with its ap_min); we agree with 0.749 to 0.5 %
+    assert r.c2 == pytest.approx(3.036 * 0.289**2 / (9.81 * 0.0345), rel=0.005)
+    assert r.c1 == pytest.approx(0.242, rel=0.05)  # 0.251: +3.7 %, see validation.md
