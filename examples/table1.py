@@ -1,0 +1,112 @@
+"""Reproduce the paper's Table 1 (catenary arches) and the Sect. 8 circular arch, side by side.
+
+Usage::
+
+    .venv/bin/python examples/table1.py            # the comparison table
+    .venv/bin/python examples/table1.py --variants # plus the mass-model / delta investigation
+
+Paper: c1..c4 of Eq. 14 for the critical optimal four-hinge mechanism (continuous arch,
+hinges at the maximum eccentricities). Ours: rockarch.arch.analyse with the default choices
+(true voussoir polygons, exact kinematics, u = rotation of the left part, ground acceleration
+to the right). "c4(-)" is c4 with the mirrored load (ground acceleration to the left), i.e.
+delta measured on the part that ends at the extrados inner hinge: see docs/validation.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from rockarch.arch import analyse, catenary, circular
+
+G = 9.81
+
+# paper Table 1: (f/l, d/l) -> (c1, c2, c3, c3', c4)
+TABLE1 = {
+    (0.2, 0.0125): (0.219, 0.823, 0.24, 0.28, 0.34),
+    (0.2, 0.025): (0.218, 0.829, 0.22, 0.30, 0.31),
+    (0.2, 0.05): (0.229, 0.853, 0.18, 0.34, 0.25),
+    (0.3, 0.0125): (0.270, 0.897, 0.26, 0.28, 0.40),
+    (0.3, 0.025): (0.267, 0.899, 0.24, 0.29, 0.36),
+    (0.3, 0.05): (0.263, 0.907, 0.22, 0.32, 0.34),
+    (0.3, 0.1): (0.292, 0.944, 0.17, 0.38, 0.27),
+    (0.4, 0.0125): (0.321, 0.983, 0.27, 0.29, 0.45),
+    (0.4, 0.025): (0.318, 0.984, 0.26, 0.30, 0.43),
+    (0.4, 0.05): (0.313, 0.988, 0.24, 0.31, 0.40),
+    (0.4, 0.1): (0.296, 1.006, 0.20, 0.36, 0.34),
+}
+
+
+def pct(ours: float, paper: float) -> str:
+    return f"{100 * (ours / paper - 1):+5.1f}%"
+
+
+def table1() -> dict:
+    print("Table 1, catenary arches (span l = 1; paper / ours / deviation)")
+    head = (f"{'f/l':>4} {'d/l':>6} | {'c1 paper':>8} {'ours':>6} {'dev':>6} | "
+            f"{'c2 paper':>8} {'ours':>6} {'dev':>6} | {'c3/c3p paper':>12} {'ours':>11} | "
+            f"{'c4 paper':>8} {'ours':>6} {'dev':>6} {'c4(-)':>6} {'dev':>6}")
+    print(head)
+    print("-" * len(head))
+    worst = {"c1": 0.0, "c2": 0.0, "c3": 0.0, "c4": 0.0, "c4m": 0.0}
+    for (fl, dl), (c1, c2, c3, c3p, c4) in TABLE1.items():
+        r = analyse(catenary(1.0, fl, dl), g=G)
+        rm = analyse(catenary(1.0, fl, dl), g=G, direction=-1)
+        worst["c1"] = max(worst["c1"], abs(r.c1 / c1 - 1))
+        worst["c2"] = max(worst["c2"], abs(r.c2 / c2 - 1))
+        worst["c3"] = max(worst["c3"], abs(r.c3 - c3), abs(r.c3p - c3p))
+        worst["c4"] = max(worst["c4"], abs(r.c4 / c4 - 1))
+        worst["c4m"] = max(worst["c4m"], abs(rm.c4 / c4 - 1))
+        print(f"{fl:4.1f} {dl:6.4f} | {c1:8.3f} {r.c1:6.3f} {pct(r.c1, c1)} | "
+              f"{c2:8.3f} {r.c2:6.3f} {pct(r.c2, c2)} | {c3:5.2f}/{c3p:<6.2f} "
+              f"{r.c3:5.3f}/{r.c3p:5.3f} | {c4:8.2f} {r.c4:6.3f} {pct(r.c4, c4)} "
+              f"{rm.c4:6.3f} {pct(rm.c4, c4)}")
+    print(f"max |deviation|: c1 {100 * worst['c1']:.1f}%, c2 {100 * worst['c2']:.2f}%, "
+          f"c3/c3' {worst['c3']:.3f} (absolute), c4 {100 * worst['c4']:.0f}% "
+          f"(c4(-) {100 * worst['c4m']:.0f}%)")
+    return worst
+
+
+def sect8() -> None:
+    print("\nSect. 8 circular arch, l = 10 m, f/l = 0.289 (paper: ap,min = 3.036 m/s², "
+          "Table 2: c1 = 0.242, c2 = 0.768)")
+    for dl in (0.0346, 0.0345):
+        r = analyse(circular(10.0, 2.89, 10.0 * dl), g=G)
+        c2_own = 3.036 * 0.289**2 / (G * dl)
+        print(f"  d/l = {dl}: ap,min = {r.ap_min:.3f} m/s² ({pct(r.ap_min, 3.036)}), "
+              f"c1 = {r.c1:.3f} ({pct(r.c1, 0.242)}), c2 = {r.c2:.3f} ({pct(r.c2, 0.768)}; "
+              f"the paper's ap,min implies c2 = {c2_own:.3f}), p = {r.p:.3f} 1/s, "
+              f"delta = {r.delta:.4f} rad, hinges at x = "
+              + ", ".join(f"{h.x:.2f}" for h in r.hinges))
+
+
+def variants() -> None:
+    print("\nVariants (f/l = 0.3): mass model and definition of delta")
+    print(f"{'d/l':>6} | {'c1 vous':>7} {'c1 axis':>7} {'c2 vous':>7} {'c2 axis':>7} | "
+          f"{'c4 exact':>8} {'c4 lin':>7} {'c4(-)':>6} {'c1(-)':>6} | {'c1*c4 ours':>10} "
+          f"{'paper':>6}")
+    for dl in (0.001, 0.0125, 0.025, 0.05, 0.1):
+        rv = analyse(catenary(1.0, 0.3, dl), g=G)
+        ra = analyse(catenary(1.0, 0.3, dl, mass_model="axis"), g=G)
+        rm = analyse(catenary(1.0, 0.3, dl), g=G, direction=-1)
+        paper = TABLE1.get((0.3, dl))
+        prod = f"{paper[0] * paper[4]:6.4f}" if paper else "   -  "
+        print(f"{dl:6.4f} | {rv.c1:7.4f} {ra.c1:7.4f} {rv.c2:7.4f} {ra.c2:7.4f} | "
+              f"{rv.c4:8.4f} {dl / rv.delta_linear:7.4f} {rm.c4:6.4f} {rm.c1:6.4f} | "
+              f"{rv.c1 * rv.c4:10.4f} {prod}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--variants", action="store_true", help="also print the investigation")
+    args = ap.parse_args()
+    t0 = time.perf_counter()
+    table1()
+    sect8()
+    if args.variants:
+        variants()
+    print(f"\n({time.perf_counter() - t0:.1f} s)")
+
+
+if __name__ == "__main__":
+    main()
