@@ -1,7 +1,8 @@
 """Benchmark: block OAS of El Centro 1940 (RSN6, 180°), rockarch vs scipy.integrate.solve_ivp.
 
 Run:  .venv/bin/python benchmarks/block_oas.py            (≈ 3–5 min on 2 cores)
-      .venv/bin/python benchmarks/block_oas.py --full     (solve_ivp on all 10 000 cells)
+      .venv/bin/python benchmarks/block_oas.py --full --jobs 2   (solve_ivp on all 10 000
+      cells, about 40 min on 2 cores)
 
 The reference is what a user would otherwise write: Housner's exact equation integrated by
 ``solve_ivp`` (RK45, rtol 1e-9, atol 1e-12, max_step = record dt) with terminal events for
@@ -17,6 +18,7 @@ import argparse
 import math
 import resource
 import time
+from concurrent.futures import ProcessPoolExecutor
 
 import numba
 import numpy as np
@@ -91,6 +93,12 @@ def reference_simulation(t_k, a_k, p, alpha, r, t_free=T_FREE, eps_rest=EPS_REST
     return False, n_imp
 
 
+def _timed_reference(job):
+    t1 = time.perf_counter()
+    ov, _ = reference_simulation(*job)
+    return ov, time.perf_counter() - t1
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=100, help="grid size n x n (default 100)")
@@ -98,6 +106,8 @@ def main() -> None:
                     help="cells simulated with solve_ivp (default 150)")
     ap.add_argument("--full", action="store_true", help="solve_ivp on every cell")
     ap.add_argument("--alpha", type=float, default=0.1)
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="processes for the solve_ivp reference (timings stay per process)")
     args = ap.parse_args()
 
     rec = el_centro()
@@ -134,16 +144,18 @@ def main() -> None:
                                                 replace=False)
     fast_t, full_len = [], []
     for c in range(pp.size):
-        t1 = time.perf_counter()
-        st, _, _, _, _, t_end = block_kernels.run(
-            tk, ak, rr.flat[c] * math.tan(alpha), pp.flat[c], alpha, r, T_FREE, H_FACTOR,
-            EPS_REST, 0.0, 0.0, False, d, d, d, d)
-        dt = time.perf_counter() - t1
-        fast_t.append(dt)
+        best = math.inf
+        for _ in range(3):  # best of 3: the OS adds ms-scale jitter to single runs
+            t1 = time.perf_counter()
+            st, _, _, _, _, t_end = block_kernels.run(
+                tk, ak, rr.flat[c] * math.tan(alpha), pp.flat[c], alpha, r, T_FREE,
+                H_FACTOR, EPS_REST, 0.0, 0.0, False, d, d, d, d)
+            best = min(best, time.perf_counter() - t1)
+        fast_t.append(best)
         if st == 0 and t_end >= rec.duration:
-            full_len.append(dt)
+            full_len.append(best)
     fast_t = np.array(fast_t)
-    print(f"rockarch per simulation (1 thread, all {pp.size} cells): median "
+    print(f"rockarch per simulation (1 thread, best of 3, all {pp.size} cells): median "
           f"{np.median(fast_t) * 1e3:.3f} ms, p99 {np.percentile(fast_t, 99) * 1e3:.3f} ms, "
           f"max {fast_t.max() * 1e3:.3f} ms")
     if full_len:
@@ -154,18 +166,18 @@ def main() -> None:
     imps = simulate_batch(rec, pp, rr, alpha).impacts
     print(f"  impacts per simulation: median {int(np.median(imps))}, max {int(imps.max())}")
 
-    ref_t, agree = [], []
     a_g = np.ascontiguousarray(unit.a)
+    jobs = [(tk, a_g * rr.flat[c] * math.tan(alpha), pp.flat[c], alpha, r) for c in cells]
+    ref_t, ref_ov = [], []
     t_start = time.perf_counter()
-    for j, c in enumerate(cells):
-        t1 = time.perf_counter()
-        ov, _ = reference_simulation(tk, a_g * rr.flat[c] * math.tan(alpha), pp.flat[c],
-                                     alpha, r)
-        ref_t.append(time.perf_counter() - t1)
-        agree.append(ov == bool(ds.overturned.values.flat[c]))
-        if (j + 1) % 25 == 0:
-            print(f"  solve_ivp: {j + 1}/{cells.size} cells, "
-                  f"{time.perf_counter() - t_start:.0f} s", flush=True)
+    with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+        for j, (ov, dt) in enumerate(pool.map(_timed_reference, jobs, chunksize=4)):
+            ref_t.append(dt)
+            ref_ov.append(ov)
+            if (j + 1) % 250 == 0 or j + 1 == len(jobs):
+                print(f"  solve_ivp: {j + 1}/{cells.size} cells, "
+                      f"{time.perf_counter() - t_start:.0f} s", flush=True)
+    agree = np.array(ref_ov) == ds.overturned.values.flat[cells]
     ref_t = np.array(ref_t)
     sub = fast_t[cells]
     print(f"solve_ivp per simulation ({cells.size} cells): median "

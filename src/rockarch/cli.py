@@ -76,7 +76,7 @@ def _p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: in
         raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
     if p_steps < 2:
         raise ValueError("--p-steps must be >= 2")
-    return np.linspace(p_min, p_max, p_steps)
+    return np.round(np.linspace(p_min, p_max, p_steps), 12)
 
 
 @app.command()
@@ -122,8 +122,9 @@ def oas(
         raise ValueError("--ratio-steps must be >= 1")
     if not (0 <= ratio_min <= ratio_max):
         raise ValueError(f"need 0 <= --ratio-min <= --ratio-max, got {ratio_min}, {ratio_max}")
-    ratios = np.linspace(ratio_min, ratio_max, ratio_steps) if ratio_steps > 1 \
-        else np.array([ratio_min])
+    # rounded to 12 digits so that 1.7 prints as 1.7, not 1.7000000000000002
+    ratios = np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12) \
+        if ratio_steps > 1 else np.array([ratio_min])
     for path in (out, plot):
         if path is not None and not path.resolve().parent.is_dir():
             raise ValueError(f"{path.parent}: directory does not exist")
