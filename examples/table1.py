@@ -17,7 +17,13 @@ from __future__ import annotations
 import argparse
 import time
 
-from rockarch.arch import analyse, catenary, circular
+from rockarch.arch import (
+    analyse,
+    catenary,
+    circular,
+    mass_per_horizontal_length,
+    weighted_catenary,
+)
 
 G = 9.81
 
@@ -80,6 +86,18 @@ def sect8() -> None:
               + ", ".join(f"{h.x:.2f}" for h in r.hinges))
 
 
+def table2() -> None:
+    print("\nTable 2 / Sect. 9: replacement weighted catenaries carrying the circular arch's mass "
+          "(l = 10 m, rise 2.924 m as in Sect. 9)")
+    q = mass_per_horizontal_length(circular(10.0, 2.89, 0.346))
+    for name, dl, (c1, c2, ap) in (("equivalent", 0.0293, (0.2473, 0.8914, 3.036)),
+                                   ("lower bound", 0.0207, (0.2437, 0.8896, 2.163))):
+        r = analyse(weighted_catenary(10.0, 2.924, 10.0 * dl, weights=q), g=G)
+        print(f"  {name:11s} d/l = {dl}: ap,min = {r.ap_min:.3f} ({ap}, {pct(r.ap_min, ap)}), "
+              f"c1 = {r.c1:.4f} ({c1}, {pct(r.c1, c1)}), c2 = {r.c2:.4f} ({c2}, "
+              f"{pct(r.c2, c2)}), p = {r.p:.3f} 1/s")
+
+
 def variants() -> None:
     print("\nVariants (f/l = 0.3): mass model and definition of delta")
     print(f"{'d/l':>6} | {'c1 vous':>7} {'c1 axis':>7} {'c2 vous':>7} {'c2 axis':>7} | "
@@ -103,6 +121,7 @@ def main() -> None:
     t0 = time.perf_counter()
     table1()
     sect8()
+    table2()
     if args.variants:
         variants()
     print(f"\n({time.perf_counter() - t0:.1f} s)")

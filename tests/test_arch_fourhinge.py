@@ -137,3 +137,15 @@ def test_sect8_circular_arch():
     # 0.768, inconsistent with its ap_min); we agree with 0.749 to 0.5 %
     assert r.c2 == pytest.approx(3.036 * 0.289**2 / (9.81 * 0.0345), rel=0.005)
     assert r.c1 == pytest.approx(0.242, rel=0.05)  # 0.251: +3.7 %, see validation.md
+
+
+def test_table2_replacement_weighted_catenary():
+    # Sect. 9 / Table 2: the weighted catenary carrying the circular arch's mass, l = 10 m,
+    # f = 2.924 m, d = 0.293 m: ap_min = 3.036 m/s² (ours 3.030) and c2 = 0.8914 (ours 0.901).
+    # 1.5 % covers the paper's 3-4 digit geometry (f, d) and its coarser discretisation.
+    from rockarch.arch import mass_per_horizontal_length, weighted_catenary
+
+    q = mass_per_horizontal_length(circular(10, 2.89, 0.346))
+    r = analyse(weighted_catenary(10, 2.924, 0.293, weights=q))
+    assert r.ap_min == pytest.approx(3.036, rel=0.015)
+    assert r.c2 == pytest.approx(0.8914, rel=0.015)
