@@ -149,3 +149,27 @@ def test_table2_replacement_weighted_catenary():
     r = analyse(weighted_catenary(10, 2.924, 0.293, weights=q))
     assert r.ap_min == pytest.approx(3.036, rel=0.015)
     assert r.c2 == pytest.approx(0.8914, rel=0.015)
+
+
+def test_polyline_and_contour_arches_reproduce_the_analytic_catenary():
+    # a 200-chord polyline of the catenary axis and the intrados/extrados pair of the same arch
+    # give the analytic ap_min and p to 0.1 % (chord error ~ (l/200)^2 * kappa / 8)
+    from rockarch.arch import from_contour, polyline
+
+    cat = catenary(10, 3, 0.3)
+    ref = analyse(cat)
+    p, _, _ = cat.axis_at(np.linspace(0, 1, 201))
+    ip, ep = cat.joints_at(np.linspace(0, 1, 3001))
+    for other in (polyline(p, 0.3), from_contour(ip, ep)):
+        r = analyse(other)
+        assert r.ap_min == pytest.approx(ref.ap_min, rel=1e-3)
+        assert r.p == pytest.approx(ref.p, rel=1e-3)
+
+
+def test_non_symmetric_arch_needs_both_directions():
+    # thickness growing to the right: the two load directions give different ap_min
+    a = catenary(10, 3, lambda s: 0.2 + 0.2 * s)
+    r1, r2 = analyse(a, direction=1), analyse(a, direction=-1)
+    assert r2.ap_min > 2 * r1.ap_min
+    for r in (r1, r2):
+        assert r.ap_min_vw == pytest.approx(r.ap_min, rel=1e-8)
