@@ -154,22 +154,26 @@ def _polyline_axis(points: np.ndarray) -> AxisFn:
 
 
 def _segments_cross(p: np.ndarray) -> bool:
-    """True if a polyline (M+1, 2) intersects itself (non-adjacent segments cross)."""
-    a, b = p[:-1], p[1:]
+    """True if a polyline (M+1, 2) intersects itself (non-adjacent segments cross).
+
+    Vectorised over all later segments for chunks of 256 segments (memory O(256 M)).
+    """
+    a, d = p[:-1], np.diff(p, axis=0)
     m = len(a)
-    if m < 3:
-        return False
-    d = b - a
-    # all pairs i < j - 1 (vectorised; polylines given by users are small)
-    i, j = np.triu_indices(m, k=2)
-    r, s = d[i], d[j]
-    qp = a[j] - a[i]
-    den = r[:, 0] * s[:, 1] - r[:, 1] * s[:, 0]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tt = (qp[:, 0] * s[:, 1] - qp[:, 1] * s[:, 0]) / den
-        uu = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / den
-    hit = (np.abs(den) > 1e-300) & (tt >= 0) & (tt <= 1) & (uu >= 0) & (uu <= 1)
-    return bool(np.any(hit))
+    for i0 in range(0, max(m - 2, 0), 256):
+        i = np.arange(i0, min(i0 + 256, m - 2))[:, None]
+        j = np.arange(m)[None, :]
+        pair = j >= i + 2
+        r, s = d[i[:, 0]][:, None, :], d[None, :, :]
+        qp = a[None, :, :] - a[i[:, 0]][:, None, :]
+        den = r[..., 0] * s[..., 1] - r[..., 1] * s[..., 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tt = (qp[..., 0] * s[..., 1] - qp[..., 1] * s[..., 0]) / den
+            uu = (qp[..., 0] * r[..., 1] - qp[..., 1] * r[..., 0]) / den
+        hit = pair & (np.abs(den) > 1e-300) & (tt >= 0) & (tt <= 1) & (uu >= 0) & (uu <= 1)
+        if np.any(hit):
+            return True
+    return False
 
 
 # --------------------------------------------------------------------------------------------
