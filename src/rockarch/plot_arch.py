@@ -73,7 +73,7 @@ def plot_mechanism(res: ArchMechanism, path: str, *, u: float | None = None) -> 
     ax.set_ylabel("y (m)")
     ax.set_title(f"{arch.shape} arch l = {arch.span:g} m, f = {arch.rise:g} m: p = "
                  f"{res.p:.3f} 1/s, delta = {res.delta:.4f} rad")
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3, fontsize=7)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3, fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
