@@ -14,11 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rockarch import block_kernels as _k
+from rockarch import rocking_kernels as _k
 from rockarch._validate import in_range, positive
 from rockarch.motion import GroundMotion
 
 G = 9.81
+_NO_TABLE = np.zeros((2, 3, 2))
 
 #: Default RK4 step bound h_max = H_FACTOR / p. The global error of RK4 is O((p·h)^4);
 #: tests/test_block.py checks that halving it changes overturning times by < 1e-6 s.
@@ -98,6 +99,12 @@ class RigidBlock:
         """Coefficient of restitution in use (Housner's unless given)."""
         return housner_restitution(self.alpha) if self.restitution is None else self.restitution
 
+    def kernel_args(self) -> tuple:
+        """(model, prm, tab, amin, level, e) of :func:`rockarch.rocking_kernels.run`."""
+        r = self.r
+        return (_k.MODEL_BLOCK, np.array([self.alpha]), _NO_TABLE,
+                np.full(2, math.tan(self.alpha)), np.full(2, self.alpha), np.array([r, r]))
+
     def theta_ddot(self, theta, a_g):
         """Angular acceleration of Housner's exact equation (physics note section 1)."""
         theta = np.asarray(theta, dtype=float)
@@ -153,7 +160,7 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
 
     The motion is used as given (m/s²); free rocking continues ``t_free`` seconds after it
     ends, or until the block rests. ``motion=None`` is free rocking from (theta0,
-    theta_dot0) for ``t_free`` seconds. See :mod:`rockarch.block_kernels` for the
+    theta_dot0) for ``t_free`` seconds. See :mod:`rockarch.rocking_kernels` for the
     integrator, event location and the chatter criterion.
     """
     _check_settings(t_free, h_factor, eps_rest)
@@ -168,12 +175,13 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
         ak = np.ascontiguousarray(motion.a, dtype=float) / block.g
         name, duration = motion.name, motion.duration
     cap = int((duration + t_free) * block.p / h_factor * 1.1) + 1024
+    model, prm, tab, amin, level, e = block.kernel_args()
     while True:
         out_t, out_th, out_om = np.empty(cap), np.empty(cap), np.empty(cap)
         out_imp = np.empty(cap)
         status, n_rec, n_imp, t_ov, mx, t_end = _k.run(
-            tk, ak, 1.0, block.p, block.alpha, block.r, float(t_free), float(h_factor),
-            float(eps_rest), th0, om0, True, out_t, out_th, out_om, out_imp)
+            tk, ak, 1.0, model, block.p**2, block.p, prm, tab, amin, level, e, float(t_free),
+            float(h_factor), float(eps_rest), th0, om0, True, out_t, out_th, out_om, out_imp)
         if status >= 0:
             break
         cap *= 4
@@ -182,7 +190,7 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
         theta=out_th[:n_rec].copy(), theta_dot=out_om[:n_rec].copy(),
         impacts=out_imp[:n_imp].copy(), overturned=status == 1,
         t_overturn=float(t_ov) if status == 1 else None,
-        max_theta_over_alpha=float(mx / block.alpha), t_end=float(t_end))
+        max_theta_over_alpha=float(mx), t_end=float(t_end))
 
 
 @dataclass(frozen=True)
@@ -221,12 +229,15 @@ def simulate_batch(motion: GroundMotion, p, ratio, alpha: float, *, g: float = G
     scales = r_flat * math.tan(blk.alpha)
     # a fixed permutation balances the threads (overturning runs end early)
     perm = np.random.default_rng(0).permutation(p_flat.size)
-    status, t_ov, mx, nimp = _k.run_batch(tk, ak, scales[perm], p_flat[perm], blk.alpha, blk.r,
-                                          float(t_free), float(h_factor), float(eps_rest))
+    model, prm, tab, amin, level, e = blk.kernel_args()
+    ps = p_flat[perm]
+    status, t_ov, mx, nimp = _k.run_batch(tk, ak, scales[perm], model, ps * ps, ps, prm, tab,
+                                          amin, level, e, float(t_free), float(h_factor),
+                                          float(eps_rest))
     inv = np.empty_like(perm)
     inv[perm] = np.arange(perm.size)
     return BatchResult(
         overturned=(status[inv] == 1).reshape(shape),
         t_overturn=t_ov[inv].reshape(shape),
-        max_theta_over_alpha=(mx[inv] / blk.alpha).reshape(shape),
+        max_theta_over_alpha=mx[inv].reshape(shape),
         impacts=nimp[inv].reshape(shape))
