@@ -36,6 +36,59 @@ class Signal(str, Enum):
 
 class System(str, Enum):
     block = "block"
+    fourhinge = "fourhinge"
+    frame = "frame"
+    sdof = "sdof"
+
+
+class Shape(str, Enum):
+    catenary = "catenary"
+    circular = "circular"
+    pointed = "pointed"
+    elliptical = "elliptical"
+
+
+def _oas_system(system: System, *, alpha, shape, rise_over_span, thickness_over_span, blocks,
+                mass_ratio, delta, ap_min, g, restitution, t_free):
+    """The OASSystem for --system (p varies across the map by scaling the size)."""
+    from rockarch import spectra
+
+    def need(**kw):
+        missing = [k for k, v in kw.items() if v is None]
+        if missing:
+            flags = ", ".join("--" + k.replace("_", "-") for k in missing)
+            raise ValueError(f"--system {system.value} needs {flags}")
+
+    if system is System.block:
+        need(alpha=alpha)
+        return spectra.BlockSystem(alpha=alpha, g=g, restitution=restitution, t_free=t_free)
+    from rockarch import mechanism as mc
+
+    if system is System.fourhinge:
+        need(shape=shape, rise_over_span=rise_over_span,
+             thickness_over_span=thickness_over_span)
+        from rockarch.arch.dynamics import fourhinge_mechanism
+        from rockarch.arch.geometry import make_arch
+
+        arch = make_arch(shape.value, 1.0, positive("--rise-over-span", rise_over_span),
+                         positive("--thickness-over-span", thickness_over_span))
+        mech = fourhinge_mechanism(
+            arch, _check_blocks(blocks), g=g, restitution=restitution,
+            name=f"{shape.value} f/l={rise_over_span:g} d/l={thickness_over_span:g}")
+    elif system is System.frame:
+        need(alpha=alpha, mass_ratio=mass_ratio)
+        mech = mc.rocking_frame(alpha, 1.0, mass_ratio, g, restitution)
+    else:
+        need(delta=delta, ap_min=ap_min)
+        mech = mc.generic(1.0, delta, ap_min, g, restitution)
+    return spectra.MechanismSystem(mech, t_free=t_free)
+
+
+def _check_blocks(blocks: int | None) -> int | None:
+    if blocks is not None and blocks < 4:
+        raise ValueError(f"at least 4 voussoirs are needed for a four-hinge mechanism, "
+                         f"got {blocks}")
+    return blocks
 
 
 def _float_list(name: str, text: str) -> np.ndarray:
@@ -83,8 +136,18 @@ def _p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: in
 @app.command()
 @guarded
 def oas(
-    system: System = typer.Option(System.block, help="Structure whose OAS is computed."),
-    alpha: float = typer.Option(None, help="Block slenderness angle atan(B/H) [rad]."),
+    system: System = typer.Option(System.block, help="Structure whose OAS is computed: a "
+                                  "rigid block, the four-hinge mechanism of an arch, a rocking "
+                                  "frame, or any SDOF mechanism given by delta and ap,min."),
+    alpha: float = typer.Option(None, help="block/frame: slenderness atan(B/H) [rad]."),
+    shape: Shape = typer.Option(None, help="fourhinge: arch shape."),
+    rise_over_span: float = typer.Option(None, help="fourhinge: f/l."),
+    thickness_over_span: float = typer.Option(None, help="fourhinge: d/l."),
+    blocks: int = typer.Option(None, help="fourhinge: voussoirs (critical mechanism); "
+                               "default the continuous arch (critical optimal)."),
+    mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
+    delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
+    ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
     signal: Signal = typer.Option(None, help="Pulse shape (paper Fig. 14)."),
     period: float = typer.Option(None, help="Pulse period T [s]."),
     cycles: int = typer.Option(3, help="Number of cycles of --signal harmonic."),
@@ -111,13 +174,15 @@ def oas(
     """Overturning acceleration spectrum (OAS) over p × ap/ap,min for one ground motion.
 
     Pulses have peak ap = ratio·ap,min; a record is scaled so that its PGA = ratio·ap,min.
+    For mechanisms p varies by scaling the structure (p ∝ 1/sqrt(size), same shape).
     """
     from rockarch import spectra
 
-    if alpha is None:
-        raise ValueError("--alpha is required for --system block")
-    sysobj = spectra.BlockSystem(alpha=alpha, g=g, restitution=restitution, t_free=t_free)
-    shape = _shape(signal, period, cycles, record, units)
+    sysobj = _oas_system(system, alpha=alpha, shape=shape, rise_over_span=rise_over_span,
+                         thickness_over_span=thickness_over_span, blocks=blocks,
+                         mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
+                         restitution=restitution, t_free=t_free)
+    shape_motion = _shape(signal, period, cycles, record, units)
     ps = _p_grid(p, p_min, p_max, p_steps)
     if ratio_steps < 1:
         raise ValueError("--ratio-steps must be >= 1")
@@ -129,7 +194,7 @@ def oas(
     for path in (out, plot):
         if path is not None and not path.resolve().parent.is_dir():
             raise ValueError(f"{path.parent}: directory does not exist")
-    ds = spectra.compute_oas(sysobj, shape, ps, ratios, tol=tol,
+    ds = spectra.compute_oas(sysobj, shape_motion, ps, ratios, tol=tol,
                              progress=progress and sys.stderr.isatty())
     if out is not None:
         spectra.save(ds, out)
@@ -146,7 +211,7 @@ def oas(
             "boundary": ds["boundary"].values,
         })
         return
-    typer.echo(f"OAS of block alpha={alpha:g} rad for {shape.name}")
+    typer.echo(f"OAS of {sysobj.name} for {shape_motion.name}")
     typer.echo(f"{'p [1/s]':>10}  {'boundary ap/ap,min':>20}")
     for pv, bv in zip(ds["p"].values, ds["boundary"].values, strict=True):
         txt = f"{bv:.4f}" if np.isfinite(bv) else f"> {ratios[-1]:g} (none in range)"
@@ -156,6 +221,49 @@ def oas(
             typer.echo(f"wrote {path}")
 
 
+def _run_simulation(structure, header: str, ap_min: float, run, signal, period, cycles,
+                    record, units, ratio, plot, json_out) -> None:
+    """Scale the motion to a peak of ratio·ap,min, run, then print JSON or a summary."""
+    if not (ratio >= 0 and np.isfinite(ratio)):
+        raise ValueError(f"--ratio must be a finite number >= 0, got {ratio}")
+    shape = _shape(signal, period, cycles, record, units)
+    mot = shape.scaled(ratio * ap_min / shape.pga)
+    if plot is not None and not plot.resolve().parent.is_dir():
+        raise ValueError(f"{plot.parent}: directory does not exist")
+    resp = run(mot)
+    if plot is not None:
+        from rockarch.plot import plot_response, save_figure
+
+        save_figure(plot_response(resp, mot), plot)
+    s = resp.summary()
+    if json_out:
+        print_json(s)
+        return
+    typer.echo(header)
+    typer.echo(f"motion: {mot.name}, PGA={mot.pga:.4g} m/s² = {ratio:g} ap,min")
+    if s["overturned"]:
+        typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after {s['impacts']} impacts")
+    else:
+        typer.echo(f"safe: max rotation / its overturning value = "
+                   f"{s['max_theta_over_alpha']:.4f}, {s['impacts']} impacts")
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
+
+
+SIGNAL_OPT = typer.Option(None, help="Pulse shape (paper Fig. 14).")
+PERIOD_OPT = typer.Option(None, help="Pulse period T [s].")
+CYCLES_OPT = typer.Option(3, help="Number of cycles of --signal harmonic.")
+RECORD_OPT = typer.Option(None, help="Record file (.AT2 or two-column time/acc).")
+UNITS_OPT = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, cm/s2.")
+RATIO_OPT = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min.")
+REST_OPT = typer.Option(None, help="Coefficient of restitution in [0, 1] (default: the "
+                        "structure's own impact law).")
+TFREE_OPT = typer.Option(10.0, help="Free motion after the ground motion ends [s].")
+G_OPT = typer.Option(9.81, help="Acceleration of gravity [m/s²].")
+PLOT_OPT = typer.Option(None, help="Write a PNG of the rotation and a_g over time.")
+JSON_OPT = typer.Option(False, "--json", help="Print one JSON object.")
+
+
 @simulate_app.command("block")
 @guarded
 def simulate_block(
@@ -163,17 +271,10 @@ def simulate_block(
     p: float = typer.Option(None, "--p", help="Frequency parameter [1/s]."),
     width: float = typer.Option(None, help="Full width B [m] (instead of --p/--alpha)."),
     height: float = typer.Option(None, help="Full height H [m] (instead of --p/--alpha)."),
-    signal: Signal = typer.Option(None, help="Pulse shape (paper Fig. 14)."),
-    period: float = typer.Option(None, help="Pulse period T [s]."),
-    cycles: int = typer.Option(3, help="Number of cycles of --signal harmonic."),
-    record: Path = typer.Option(None, help="Record file (.AT2 or two-column time/acc)."),
-    units: str = typer.Option(None, help="Units of a two-column record."),
-    ratio: float = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min."),
-    restitution: float = typer.Option(None, help="Coefficient of restitution in [0, 1]."),
-    t_free: float = typer.Option(10.0, help="Free rocking after the motion ends [s]."),
-    g: float = typer.Option(9.81, help="Acceleration of gravity [m/s²]."),
-    plot: Path = typer.Option(None, help="Write a PNG of theta/alpha and a_g over time."),
-    json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
+    signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
+    record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
+    restitution: float = REST_OPT, t_free: float = TFREE_OPT, g: float = G_OPT,
+    plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rigid block (exact Housner equation) on a pulse or a record."""
     from rockarch.block import RigidBlock, simulate
@@ -188,31 +289,88 @@ def simulate_block(
         if p is None or alpha is None:
             raise ValueError("give the block: --p P --alpha A (or --width B --height H)")
         blk = RigidBlock(p, alpha, g, restitution)
-    if not (ratio >= 0 and np.isfinite(ratio)):
-        raise ValueError(f"--ratio must be a finite number >= 0, got {ratio}")
-    shape = _shape(signal, period, cycles, record, units)
-    mot = shape.scaled(ratio * blk.ap_min / shape.pga)
-    if plot is not None and not plot.resolve().parent.is_dir():
-        raise ValueError(f"{plot.parent}: directory does not exist")
-    resp = simulate(blk, mot, t_free=t_free)
-    if plot is not None:
-        from rockarch.plot import plot_response, save_figure
+    header = (f"block p={blk.p:.4g} 1/s alpha={blk.alpha:.4g} rad (B={blk.width:.4g} m, "
+              f"H={blk.height:.4g} m, ap,min={blk.ap_min:.4g} m/s², r={blk.r:.4f})")
+    _run_simulation(blk, header, blk.ap_min, lambda m: simulate(blk, m, t_free=t_free),
+                    signal, period, cycles, record, units, ratio, plot, json_out)
 
-        save_figure(plot_response(resp, mot), plot)
-    if json_out:
-        print_json(resp.summary())
-        return
-    s = resp.summary()
-    typer.echo(f"block p={blk.p:.4g} 1/s alpha={blk.alpha:.4g} rad (B={blk.width:.4g} m, "
-               f"H={blk.height:.4g} m, ap,min={blk.ap_min:.4g} m/s², r={blk.r:.4f})")
-    typer.echo(f"motion: {mot.name}, PGA={mot.pga:.4g} m/s² = {ratio:g} ap,min")
-    if s["overturned"]:
-        typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after {s['impacts']} impacts")
-    else:
-        typer.echo(f"safe: max |theta|/alpha = {s['max_theta_over_alpha']:.4f}, "
-                   f"{s['impacts']} impacts")
-    if plot is not None:
-        typer.echo(f"wrote {plot}")
+
+def _simulate_mechanism(mech, p, header, signal, period, cycles, record, units, ratio,
+                        t_free, plot, json_out) -> None:
+    from rockarch import mechanism as mc
+
+    _run_simulation(mech, header, mech.ap_min,
+                    lambda m: mc.simulate(mech, m, p=p, t_free=t_free),
+                    signal, period, cycles, record, units, ratio, plot, json_out)
+
+
+@simulate_app.command("fourhinge")
+@guarded
+def simulate_fourhinge(
+    shape: Shape = typer.Option(..., help="Arch shape."),
+    span: float = typer.Option(..., help="Span l of the axis [m]."),
+    rise: float = typer.Option(..., help="Rise f of the axis [m]."),
+    thickness: float = typer.Option(..., help="Uniform thickness d [m]."),
+    blocks: int = typer.Option(None, help="Voussoirs (critical mechanism); default the "
+                               "continuous arch (critical optimal mechanism)."),
+    signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
+    record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
+    restitution: float = REST_OPT, t_free: float = TFREE_OPT, g: float = G_OPT,
+    plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
+) -> None:
+    """Simulate the four-hinge mechanism of an arch (exact linkage kinematics, Sect. 5)."""
+    from rockarch.arch.dynamics import fourhinge_mechanism
+    from rockarch.arch.geometry import make_arch
+
+    arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
+                     positive("--thickness", thickness))
+    mech = fourhinge_mechanism(arch, _check_blocks(blocks), g=positive("--g", g),
+                               restitution=restitution)
+    header = (f"{mech.name}: p={mech.p:.4g} 1/s, delta={mech.delta:.4g} rad, "
+              f"ap,min={mech.ap_min:.4g} m/s², impact e={mech.plus.e_close:.4f}/"
+              f"{mech.minus.e_close:.4f}")
+    _simulate_mechanism(mech, None, header, signal, period, cycles, record, units, ratio,
+                        t_free, plot, json_out)
+
+
+@simulate_app.command("frame")
+@guarded
+def simulate_frame(
+    alpha: float = typer.Option(..., help="Column slenderness atan(b/h) [rad]."),
+    p: float = typer.Option(..., "--p", help="Frequency parameter of one column [1/s]."),
+    mass_ratio: float = typer.Option(..., help="Lintel mass / mass of both columns."),
+    signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
+    record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
+    restitution: float = REST_OPT, t_free: float = TFREE_OPT, g: float = G_OPT,
+    plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
+) -> None:
+    """Simulate a rocking frame: two rigid columns and a rigid lintel (paper Fig. 1)."""
+    from rockarch.mechanism import rocking_frame
+
+    mech = rocking_frame(alpha, p, mass_ratio, g, restitution)
+    header = (f"{mech.name}: p={mech.p:.4g} 1/s (Eq. 12), ap,min={mech.ap_min:.4g} m/s², "
+              f"e={mech.plus.e_close:.4f}")
+    _simulate_mechanism(mech, None, header, signal, period, cycles, record, units, ratio,
+                        t_free, plot, json_out)
+
+
+@simulate_app.command("sdof")
+@guarded
+def simulate_sdof(
+    p: float = typer.Option(..., "--p", help="Frequency parameter [1/s]."),
+    delta: float = typer.Option(..., help="Neutral angle delta [rad]."),
+    ap_min: float = typer.Option(..., "--ap-min", help="Limit acceleration [m/s²]."),
+    signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
+    record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
+    restitution: float = REST_OPT, t_free: float = TFREE_OPT, g: float = G_OPT,
+    plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
+) -> None:
+    """Simulate any SDOF mechanism given by (p, delta, ap,min) (equivalence form, ref. [13])."""
+    from rockarch.mechanism import generic
+
+    mech = generic(p, delta, ap_min, g, restitution)
+    _simulate_mechanism(mech, None, mech.name, signal, period, cycles, record, units, ratio,
+                        t_free, plot, json_out)
 
 
 # --- arch statics (rockarch.arch; imported inside the command: scipy.optimize is slow to load)
@@ -257,9 +415,7 @@ def arch(
     span = positive("span", span)
     rise = positive("rise", rise)
     g = positive("g", g)
-    if blocks is not None and blocks < 4:
-        raise ValueError(f"at least 4 voussoirs are needed for a four-hinge mechanism, "
-                         f"got {blocks}")
+    _check_blocks(blocks)
     if min_thickness:
         probe = make_arch(shape, span, rise, thickness if thickness else 0.01 * span,
                           mass_model=mass_model)

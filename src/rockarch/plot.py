@@ -76,29 +76,42 @@ def plot_oas(ds: xr.Dataset, ax=None, *, label: str | None = None, color: str = 
     return ax
 
 
-def plot_response(resp: BlockResponse, motion: GroundMotion | None = None):
-    """theta/alpha and a_g/ap,min over time, impacts and overturning marked. Returns fig."""
-    blk = resp.block
+def plot_response(resp, motion: GroundMotion | None = None):
+    """Normalised rotation (theta/alpha or u/delta) and a_g/ap,min over time, impacts and
+    overturning marked; ``resp`` is a block or mechanism response. Returns the figure."""
+    if isinstance(resp, BlockResponse):
+        blk = resp.block
+        t, x, ap_min = resp.t, resp.theta / blk.alpha, blk.ap_min
+        ylabel = r"$\theta / \alpha$"
+        title = (f"block p = {blk.p:.3g} 1/s, alpha = {blk.alpha:.4g} rad, r = {blk.r:.4f}; "
+                 f"{resp.motion_name}")
+        t_c, over = resp.t_overturn, resp.overturned
+    else:
+        mech = resp.mechanism
+        level = np.where(resp.u >= 0, mech.plus.delta, mech.minus.delta)
+        t, x, ap_min = resp.t, resp.u / level, mech.ap_min
+        ylabel = r"$u / \delta$"
+        title = f"{mech.name}, p = {resp.p:.3g} 1/s; {resp.motion_name}"
+        t_c, over = resp.t_collapse, resp.collapsed
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7.5, 5.2), sharex=True,
                                    gridspec_kw={"height_ratios": [2, 1]})
-    ax1.plot(resp.t, resp.theta / blk.alpha, "k-", lw=1.0)
+    ax1.plot(t, x, "k-", lw=1.0)
     ax1.axhline(1.0, color="r", ls=":", lw=0.8)
     ax1.axhline(-1.0, color="r", ls=":", lw=0.8)
     if resp.impacts.size:
         ax1.plot(resp.impacts, np.zeros_like(resp.impacts), "|", color="0.4", ms=6,
-                 label=f"impacts ({resp.n_impacts})")
-    if resp.overturned:
-        ax1.plot([resp.t_overturn], [np.sign(resp.theta[-1])], "rx", ms=9,
-                 label=f"overturned at t = {resp.t_overturn:.3f} s")
-    ax1.set_ylabel(r"$\theta / \alpha$")
-    ax1.set_title(f"block p = {blk.p:.3g} 1/s, alpha = {blk.alpha:.4g} rad, "
-                  f"r = {blk.r:.4f}; {resp.motion_name}", fontsize=9)
-    ax1.legend(loc="upper right", fontsize=8)
-    t_end = max(resp.t_end, resp.t[-1])
+                 label=f"impacts ({resp.impacts.size})")
+    if over:
+        ax1.plot([t_c], [np.sign(x[-1])], "rx", ms=9, label=f"overturned at t = {t_c:.3f} s")
+    ax1.set_ylabel(ylabel)
+    ax1.set_title(title, fontsize=9)
+    if resp.impacts.size or over:
+        ax1.legend(loc="upper right", fontsize=8)
+    t_end = max(resp.t_end, t[-1])
     if motion is not None:
         tt = np.concatenate([motion.t, [motion.duration, t_end]])
         aa = np.concatenate([motion.a, [0.0, 0.0]])
-        ax2.plot(tt, aa / blk.ap_min, "b-", lw=0.8)
+        ax2.plot(tt, aa / ap_min, "b-", lw=0.8)
     ax2.axhline(1.0, color="0.5", ls=":", lw=0.8)
     ax2.axhline(-1.0, color="0.5", ls=":", lw=0.8)
     ax2.set_ylabel(r"$a_g / a_{p,\min}$")

@@ -20,6 +20,8 @@ from tqdm.auto import tqdm
 
 from rockarch import __version__
 from rockarch.block import EPS_REST, H_FACTOR, T_FREE, G, RigidBlock, simulate_batch
+from rockarch.mechanism import SDOFMechanism
+from rockarch.mechanism import simulate_batch as mechanism_simulate_batch
 from rockarch.motion import GroundMotion
 
 #: Default bisection tolerance of the boundary (in ratio units).
@@ -64,6 +66,35 @@ class BlockSystem:
         d = {k: v for k, v in asdict(self).items() if v is not None}
         d["restitution"] = RigidBlock(1.0, self.alpha, self.g, self.restitution).r
         d["ap_min"] = RigidBlock(1.0, self.alpha, self.g).ap_min
+        return d
+
+
+@dataclass(frozen=True)
+class MechanismSystem:
+    """An SDOF mechanism of fixed shape for an OAS: p varies by scaling its size
+    (p ∝ 1/sqrt(size)); ratio scales the motion to a peak of ratio·ap,min."""
+
+    mechanism: SDOFMechanism
+    t_free: float = T_FREE
+    h_factor: float = H_FACTOR
+    eps_rest: float = EPS_REST
+
+    @property
+    def name(self) -> str:
+        return self.mechanism.name
+
+    def run(self, motion: GroundMotion, p: np.ndarray, ratio: np.ndarray):
+        return mechanism_simulate_batch(self.mechanism, motion, p, ratio, t_free=self.t_free,
+                                        h_factor=self.h_factor, eps_rest=self.eps_rest)
+
+    def attrs(self) -> dict:
+        m = self.mechanism
+        d = {"kind": "mechanism", "ap_min": m.ap_min, "delta": m.delta, "p_ref": m.p,
+             "size_ref": m.size, "g": m.g, "t_free": self.t_free, "h_factor": self.h_factor,
+             "eps_rest": self.eps_rest,
+             "restitution": -1.0 if m.restitution is None else m.restitution,
+             "e_plus": m.plus.e_close, "e_minus": m.minus.e_close}
+        d.update({k: v for k, v in m.info.items() if isinstance(v, (int, float, str))})
         return d
 
 
