@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= demo-output
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test test-all bench clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -26,6 +26,8 @@ test-all: $(VENV)/.installed
 
 bench: $(VENV)/.installed
 	$(BIN)/python benchmarks/block_oas.py
+	$(BIN)/python benchmarks/arch_lp.py
+	$(BIN)/python benchmarks/fourhinge.py
 
 clean:
 	rm -rf $(VENV) $(OUT) build src/*.egg-info
