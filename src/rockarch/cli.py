@@ -454,4 +454,127 @@ def arch(
     typer.echo("\n".join(lines))
 
 
+# --- site OAS and design check (paper Sect. 9) --------------------------------------------------
+
+
+@app.command("site-oas")
+@guarded
+def site_oas_command(
+    records: list[Path] = typer.Option(None, "--records", help="Record files (.AT2 or "
+                                       "two-column) or folders of .AT2; several may follow "
+                                       "one --records."),
+    more: list[Path] = typer.Argument(None, hidden=True),
+    units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
+    p_min: float = typer.Option(0.5, help="Smallest p [1/s]."),
+    p_max: float = typer.Option(10.0, help="Largest p [1/s]."),
+    p_steps: int = typer.Option(100, help="Number of p values."),
+    ratio_min: float = typer.Option(1.0, help="Smallest ap/ap,min."),
+    ratio_max: float = typer.Option(5.0, help="Largest ap/ap,min."),
+    ratio_steps: int = typer.Option(81, help="Number of ap/ap,min values."),
+    alpha: float = typer.Option(0.05, help="Slenderness of the site's block [rad]."),
+    percentile: float = typer.Option(50.0, help="Percentile of the records' boundaries "
+                                     "stored as the characteristic curve (lower: safer)."),
+    tol: float = typer.Option(1e-3, help="Bisection tolerance of each boundary."),
+    t_free: float = typer.Option(10.0, help="Free rocking after each record [s]."),
+    out: Path = typer.Option(..., help="NetCDF file to write."),
+    plot: Path = typer.Option(None, help="PNG of the records' OAS boundaries and curves."),
+    json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Site OAS: slender-block OAS of every record, their envelope and percentile curve."""
+    from rockarch import site
+
+    paths = list(records or []) + list(more or [])
+    for path in (out, plot):
+        if path is not None and not path.resolve().parent.is_dir():
+            raise ValueError(f"{path.parent}: directory does not exist")
+    motions, hashes = site.load_records(paths, units)
+    ps = _p_grid(None, p_min, p_max, p_steps)
+    if ratio_steps < 2 or not (0 <= ratio_min < ratio_max):
+        raise ValueError("need --ratio-steps >= 2 and 0 <= --ratio-min < --ratio-max")
+    ratios = np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
+    ds = site.site_oas(motions, ps, ratios, alpha=alpha, percentile=percentile, tol=tol,
+                       hashes=hashes, t_free=t_free, progress=sys.stderr.isatty())
+    site.save(ds, out)
+    if plot is not None:
+        import matplotlib.pyplot as plt
+
+        from rockarch.plot import save_figure
+
+        fig, ax = plt.subplots(figsize=(7, 4.4))
+        for k in range(ds.sizes["record"]):
+            ax.plot(ds["p"].values, ds["boundary"].values[k], lw=0.8,
+                    label=str(ds["record_name"].values[k])[:50])
+        ax.plot(ds["p"].values, ds["envelope"].values, "k-", lw=2, label="envelope")
+        ax.plot(ds["p"].values, ds["characteristic"].values, "k--", lw=1.2,
+                label=f"{percentile:g}th percentile")
+        ax.set_xlabel("frequency parameter p [1/s]")
+        ax.set_ylabel("lowest overturning ap/ap,min")
+        ax.set_title(ds.attrs["title"], fontsize=9)
+        ax.legend(fontsize=7)
+        save_figure(fig, plot)
+    if json_out:
+        print_json({"records": list(ds["record_name"].values), "p": ds["p"].values,
+                    "envelope": ds["envelope"].values,
+                    "characteristic": ds["characteristic"].values, "out": str(out)})
+        return
+    typer.echo(f"site OAS of {len(motions)} record(s) written to {out}")
+    for path in ([plot] if plot else []):
+        typer.echo(f"wrote {path}")
+
+
+@app.command()
+@guarded
+def design(
+    shape: Shape = typer.Option(..., help="Arch shape."),
+    span: float = typer.Option(..., help="Span l of the axis [m]."),
+    rise: float = typer.Option(..., help="Rise f of the axis [m]."),
+    thickness: float = typer.Option(..., help="Uniform thickness d [m]."),
+    site_file: Path = typer.Option(..., "--site", help="Site OAS file (rockarch site-oas)."),
+    thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
+                                       "equivalent (same ap,min) or lower-bound."),
+    curve: str = typer.Option("envelope", help="Site curve: envelope or characteristic."),
+    g: float = typer.Option(9.81, help="Acceleration of gravity [m/s²]."),
+    report: Path = typer.Option(None, help="Write a self-contained HTML report."),
+    json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
+) -> None:
+    """Largest safe PGA of an arch at a site (paper Sect. 9): replacement catenary, site OAS."""
+    from rockarch import site
+    from rockarch.arch.geometry import make_arch
+    from rockarch.design import design_check
+
+    if thickness_rule not in ("equivalent", "lower-bound"):
+        raise ValueError(f"--thickness-rule must be equivalent or lower-bound, got "
+                         f"{thickness_rule!r}")
+    if report is not None and not report.resolve().parent.is_dir():
+        raise ValueError(f"{report.parent}: directory does not exist")
+    site_ds = site.load(site_file)
+    arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
+                     positive("--thickness", thickness))
+    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g)
+    if res.ratio_is_lower_bound:
+        typer.echo("warning: no record overturns the equivalent block within the site's ratio "
+                   "range; the result is a lower bound", err=True)
+    if report is not None:
+        from rockarch.report import write_report
+
+        cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
+               f"--thickness {thickness:g} --site {site_file} --thickness-rule "
+               f"{thickness_rule} --curve {curve} --g {g:g}")
+        write_report(res, site_ds, report, command=cmd, site_path=str(site_file),
+                     inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
+                             "thickness [m]": thickness})
+    if json_out:
+        print_json(res.as_dict())
+        return
+    c = res.chosen
+    typer.echo(f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = {thickness:g} m: "
+               f"ap,min = {res.replacement.original.ap_min:.4f} m/s²")
+    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m, "
+               f"f = {c.rise:.4f} m, p = {c.p:.4f} 1/s, ap,min = {c.ap_min:.4f} m/s²")
+    typer.echo(f"site {curve} at p: ap/ap,min = {res.ratio:.4f} -> safe PGA "
+               f"{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
+    if report is not None:
+        typer.echo(f"wrote {report}")
+
+
 __all__ = ["app", "fail"]

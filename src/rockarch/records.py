@@ -154,11 +154,18 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     return read_two_column(path, units=units or "m/s2")
 
 
-def el_centro() -> GroundMotion:
-    """Bundled demo record: El Centro 1940, component 180° (PEER NGA-West2 RSN6).
+_BUNDLED = {180: "RSN6_IMPVALL.I_I-ELC180-hor1.AT2", 270: "RSN6_IMPVALL.I_I-ELC270-hor2.AT2"}
 
-    See ``rockarch/data/PROVENANCE.md`` for its source and citation.
+
+def bundled_record_path(component: int = 180) -> Path:
+    """Path of a bundled El Centro 1940 component (180 or 270), see PROVENANCE.md."""
+    if component not in _BUNDLED:
+        raise ValueError(f"bundled El Centro components are 180 and 270, got {component!r}")
+    return Path(str(resources.files("rockarch") / "data" / _BUNDLED[component]))
+
+
+def el_centro(component: int = 180) -> GroundMotion:
+    """Bundled demo record: El Centro 1940, component 180° (default) or 270°
+    (PEER NGA-West2 RSN6). See ``rockarch/data/PROVENANCE.md`` for source and citation.
     """
-    ref = resources.files("rockarch") / "data" / "RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
-    with resources.as_file(ref) as p:
-        return read_at2(p)
+    return read_at2(bundled_record_path(component))
