@@ -1,0 +1,266 @@
+"""Planar assemblies of rigid blocks for the MDOF model: arch, column, single block.
+
+An :class:`Assembly` is a chain of nb rigid bodies and nj joints; joint k lies between body
+k−1 and body k (body −1 and body nb are the ground). Each joint has two corner points
+(corner 0, corner 1) and a normal pointing from body k−1 into body k. For an arch, corner 0
+is the intrados and corner 1 the extrados; for a column, corner 0 is the left end.
+
+Reference dynamic parameters travel with the assembly (the OAS axes):
+
+* ``ap_min`` — the limit acceleration (arch: thrust-line LP of the N-voussoir arch;
+  column: the smallest over its joints of g·(lever of the part above)/(its height));
+* ``p_ref`` — frequency parameter at the assembly's size (arch: the N-voussoir four-hinge
+  mechanism; column: the critical part rocking as one block about its corner);
+* ``delta_ref`` — the neutral angle of that mechanism (normalises the reported rotation:
+  for one block it is alpha, so ``max_theta_over_alpha`` means what it means for blocks).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rockarch._validate import positive
+
+G = 9.81
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """A chain of rigid blocks between rigid supports (see the module docstring)."""
+
+    name: str
+    kind: str  # "arch" | "column" | "block"
+    mass: np.ndarray  # (nb,)
+    inertia: np.ndarray  # (nb,) polar moment about the centroid
+    centroid: np.ndarray  # (nb, 2)
+    corners: np.ndarray  # (nj, 2, 2) reference corner points of every joint
+    normal: np.ndarray  # (nj, 2) unit normal, from body k-1 into body k
+    polygons: tuple  # outlines of the original blocks (for plots)
+    ap_min: float
+    p_ref: float
+    delta_ref: float
+    size: float  # characteristic length (span or height) at which p_ref holds
+    g: float = G
+    info: dict = field(default_factory=dict)
+    poly_body: tuple = ()  # body index of every polygon (default: one polygon per body)
+
+    def body_of_polygon(self, i: int) -> int:
+        return int(self.poly_body[i]) if self.poly_body else i
+
+    @property
+    def n_blocks(self) -> int:
+        return int(self.mass.shape[0])
+
+    @property
+    def n_joints(self) -> int:
+        return int(self.normal.shape[0])
+
+    @property
+    def thickness(self) -> np.ndarray:
+        """(nj,) joint lengths."""
+        return np.hypot(*(self.corners[:, 1] - self.corners[:, 0]).T)
+
+    def kernel_args(self) -> tuple:
+        """(mass, inertia, c0, rl, rr, n0, thick_min) for :mod:`rockarch.mdof.kernels`."""
+        nb_, nj = self.n_blocks, self.n_joints
+        rl = np.empty((nj, 2, 2))
+        rr = np.empty((nj, 2, 2))
+        for k in range(nj):
+            rl[k] = self.corners[k] - (self.centroid[k - 1] if k >= 1 else 0.0)
+            rr[k] = self.corners[k] - (self.centroid[k] if k < nb_ else 0.0)
+        return (np.ascontiguousarray(self.mass, dtype=float),
+                np.ascontiguousarray(self.inertia, dtype=float),
+                np.ascontiguousarray(self.centroid, dtype=float), rl, rr,
+                np.ascontiguousarray(self.normal, dtype=float),
+                float(self.thickness.min()))
+
+    def merged(self, keep, *, name: str | None = None) -> Assembly:
+        """The same structure with only the joints ``keep`` able to open: the blocks between
+        consecutive kept joints are glued into one rigid body (e.g. an arch whose only weak
+        joints are its four hinges). Reference values (ap_min, p_ref, delta_ref) are kept."""
+        keep = sorted({int(k) for k in keep})
+        nb_, nj = self.n_blocks, self.n_joints
+        if not keep or keep[0] != 0 or any(k < 0 or k >= nj for k in keep):
+            raise ValueError(f"joints to keep must include joint 0 and lie in 0..{nj - 1}")
+        if nj == nb_ + 1 and keep[-1] != nj - 1:
+            raise ValueError(f"an arch must keep its last springing joint {nj - 1}")
+        bounds = keep + [nb_] if nj == nb_ else keep  # column: the top block ends the chain
+        mass, cen, ine, owner = [], [], [], np.zeros(nb_, dtype=int)
+        for b, (k0, k1) in enumerate(zip(bounds[:-1], bounds[1:], strict=True)):
+            idx = np.arange(k0, k1)
+            m = self.mass[idx]
+            mt = m.sum()
+            c = (m[:, None] * self.centroid[idx]).sum(axis=0) / mt
+            mass.append(mt)
+            cen.append(c)
+            ine.append(float(np.sum(self.inertia[idx] + m * np.sum((self.centroid[idx] - c) ** 2,
+                                                                  axis=1))))
+            owner[idx] = b
+        pb = tuple(int(owner[self.body_of_polygon(i)]) for i in range(len(self.polygons)))
+        return Assembly(name=name or f"{self.name} (joints {keep} only)", kind=self.kind,
+                        mass=np.array(mass), inertia=np.array(ine), centroid=np.array(cen),
+                        corners=self.corners[keep], normal=self.normal[keep],
+                        polygons=self.polygons, ap_min=self.ap_min, p_ref=self.p_ref,
+                        delta_ref=self.delta_ref, size=self.size, g=self.g,
+                        info=dict(self.info, merged_joints=keep), poly_body=pb)
+
+    def size_for(self, p: float) -> float:
+        """Size (same shape) whose frequency parameter is p (p ∝ 1/sqrt(size))."""
+        return self.size * (self.p_ref / p) ** 2
+
+
+def _rect_props(x0, y0, w, h):
+    m = w * h
+    return m, np.array([x0 + w / 2, y0 + h / 2]), m * (w * w + h * h) / 12.0
+
+
+def _rocking_part(mass, cen, inertia, corner, direction, g):
+    """ap_min, p, delta of the rigid part (bodies given) rocking about ``corner``."""
+    mt = mass.sum()
+    c = (mass[:, None] * cen).sum(axis=0) / mt
+    io = float(np.sum(inertia + mass * np.sum((cen - corner) ** 2, axis=1)))
+    dx = direction * (c[0] - corner[0])  # lever towards the rocking direction
+    dy = c[1] - corner[1]
+    if dx <= 0 or dy <= 0:
+        return math.inf, math.nan, math.nan
+    r = math.hypot(dx, dy)
+    return g * dx / dy, math.sqrt(mt * g * r / io), math.atan2(dx, dy)
+
+
+def stack(rects, *, g: float = G, name: str | None = None) -> Assembly:
+    """A column of rectangles (x_left, y_bottom, width, height), bottom to top, the first
+    one on the ground (y_bottom = 0), each resting on the one below.
+
+    Raises ValueError if blocks overlap, float, or do not share a contact face.
+    """
+    g = positive("g", g)
+    r = np.asarray(rects, dtype=float)
+    if r.ndim != 2 or r.shape[1] != 4 or r.shape[0] < 1:
+        raise ValueError("a column needs a list of blocks (x_left, y_bottom, width, height)")
+    if not np.all(np.isfinite(r)):
+        raise ValueError("column block coordinates must be finite numbers")
+    if np.any(r[:, 2] <= 0) or np.any(r[:, 3] <= 0):
+        raise ValueError("column blocks need a width and a height > 0")
+    scale = float(r[:, 3].sum())
+    tol = 1e-9 * scale
+    if abs(r[0, 1]) > tol:
+        raise ValueError(f"the first block must stand on the ground (y_bottom = 0), got "
+                         f"{r[0, 1]:g}")
+    nb_ = r.shape[0]
+    mass, cen, ine, corners, polys = [], [], [], [], []
+    for k in range(nb_):
+        x0, y0, w, h = r[k]
+        if k == 0:
+            lo, hi, yj = x0, x0 + w, 0.0
+        else:
+            top = r[k - 1, 1] + r[k - 1, 3]
+            if y0 < top - tol:
+                raise ValueError(f"blocks {k - 1} and {k} overlap (block {k} starts at y = "
+                                 f"{y0:g} below the top of block {k - 1}, y = {top:g})")
+            if y0 > top + tol:
+                raise ValueError(f"block {k} floats above block {k - 1} (gap {y0 - top:g})")
+            lo = max(x0, r[k - 1, 0])
+            hi = min(x0 + w, r[k - 1, 0] + r[k - 1, 2])
+            yj = top
+            if hi - lo <= 1e-6 * scale:
+                raise ValueError(f"blocks {k - 1} and {k} do not share a contact face")
+        m, c, i = _rect_props(x0, y0, w, h)
+        mass.append(m)
+        cen.append(c)
+        ine.append(i)
+        corners.append([[lo, yj], [hi, yj]])
+        polys.append(np.array([[x0, y0], [x0 + w, y0], [x0 + w, y0 + h], [x0, y0 + h]]))
+    mass, cen, ine = np.array(mass), np.array(cen), np.array(ine)
+    corners = np.array(corners)
+    best = (math.inf, math.nan, math.nan, -1)
+    for k in range(nb_):
+        for d, c in ((1, 0), (-1, 1)):
+            am, p, dl = _rocking_part(mass[k:], cen[k:], ine[k:], corners[k, c], d, g)
+            if am < best[0]:
+                best = (am, p, dl, k)
+    if not math.isfinite(best[0]):
+        raise ValueError("the column cannot stand: a part's centre of mass lies outside its "
+                         "support")
+    kind = "block" if nb_ == 1 else "column"
+    return Assembly(name=name or (f"{nb_}-block column" if nb_ > 1 else "block"), kind=kind,
+                    mass=mass, inertia=ine, centroid=cen, corners=corners,
+                    normal=np.tile([0.0, 1.0], (nb_, 1)), polygons=tuple(polys),
+                    ap_min=best[0], p_ref=best[1], delta_ref=best[2], size=scale, g=g,
+                    info={"critical_joint": best[3]})
+
+
+def column(blocks, *, g: float = G, name: str | None = None) -> Assembly:
+    """A column of blocks (width, height) or (width, height, x_centre), stacked bottom to
+    top (x_centre defaults to 0: a centred stack)."""
+    rects, y = [], 0.0
+    for i, b in enumerate(blocks):
+        b = tuple(b)
+        if len(b) not in (2, 3):
+            raise ValueError(f"column block {i}: give (width, height) or (width, height, "
+                             f"x_centre), got {b!r}")
+        w = positive(f"width of block {i}", b[0])
+        h = positive(f"height of block {i}", b[1])
+        xc = float(b[2]) if len(b) == 3 else 0.0
+        rects.append((xc - w / 2, y, w, h))
+        y += h
+    if not rects:
+        raise ValueError("a column needs at least one block")
+    return stack(rects, g=g, name=name)
+
+
+def single_block(width: float, height: float, *, g: float = G) -> Assembly:
+    """One rectangular block on the ground (Housner's block, physics note Sect. 1)."""
+    return column([(width, height)], g=g, name=f"block B={width:g} H={height:g}")
+
+
+def block_from_p_alpha(p: float, alpha: float, g: float = G) -> Assembly:
+    """The block with frequency parameter p and slenderness alpha (R = 3g/(4p²))."""
+    r = 3.0 * positive("g", g) / (4.0 * positive("p", p) ** 2)
+    return single_block(2 * r * math.sin(alpha), 2 * r * math.cos(alpha), g=g)
+
+
+#: Fewest voussoirs of an MDOF arch (four hinges need four parts... and joints to choose from).
+MIN_VOUSSOIRS = 5
+
+
+def arch_assembly(arch, n: int, *, g: float = G) -> Assembly:
+    """The arch cut into ``n`` voussoirs (joints normal to the axis) between rigid supports.
+
+    ap_min from the thrust-line LP of the n-voussoir arch; p_ref and delta_ref from its
+    four-hinge (critical) mechanism. Raises ValueError if n is too small or the arch cannot
+    stand.
+    """
+    from rockarch.arch import analyse, voussoirs
+
+    try:
+        n = int(n)
+    except (TypeError, ValueError):
+        raise ValueError(f"number of voussoirs must be an integer, got {n!r}") from None
+    if n < MIN_VOUSSOIRS:
+        raise ValueError(f"an MDOF arch needs at least {MIN_VOUSSOIRS} voussoirs, got {n}")
+    if n > 400:
+        raise ValueError(f"at most 400 voussoirs are supported, got {n}")
+    v = voussoirs(arch, n)
+    try:
+        mech = analyse(arch, n, g=g)
+    except ValueError as exc:
+        raise ValueError(f"{n} voussoirs: {exc}") from None
+    hj = [h.joint for h in mech.hinges]
+    if len(set(hj)) < 4:
+        raise ValueError(f"{n} voussoirs are too few for this arch: the four-hinge mechanism "
+                         "needs four distinct joints")
+    corners = np.stack([v.intrados, v.extrados], axis=1)
+    label = f"{arch.shape} arch l={arch.span:g} f={arch.rise:g}"
+    if arch.uniform_thickness:
+        label += f" d={arch.uniform_thickness:g}"
+    return Assembly(
+        name=f"MDOF {label} N={n}", kind="arch", mass=np.asarray(v.mass, float),
+        inertia=np.asarray(v.inertia, float), centroid=np.asarray(v.centroid, float),
+        corners=corners, normal=np.asarray(v.tangent, float), polygons=tuple(v.polygons()),
+        ap_min=float(mech.ap_min), p_ref=float(mech.p), delta_ref=float(mech.delta),
+        size=float(arch.span), g=g,
+        info={"shape": arch.shape, "span": arch.span, "rise": arch.rise, "blocks": n,
+              "hinges": hj, "hinge_sides": [h.side for h in mech.hinges]})

@@ -1,0 +1,640 @@
+"""Numba kernels of the MDOF rocking model (reach them through :mod:`rockarch.mdof`).
+
+Moreau–Jean time stepping (midpoint form) of a *chain* of planar rigid bodies: joint k
+lies between body k−1 (its "left/lower" side L) and body k (its "right/upper" side R);
+body −1 and body nb are the rigid ground (supports), so an arch (nj = nb + 1), a column
+(nj = nb) and a single block (nb = nj = 1) share one kernel. Everything is written in the
+frame that moves with the ground (inertia load −m·a_g on every body, supports fixed).
+
+Each joint has two corner contacts (normal, unilateral, restitution 0) and one no-slip
+constraint along the joint line (transmits any shear while the joint touches). One step:
+
+1. q_m = q ⊕ (h/2)·v (exact rigid screw motion: a point with zero velocity does not move);
+2. contact geometry at q_m; index set = corners with gap ≤ g_tol;
+3. v_free = v + h·M⁻¹·f̄ (f̄ = gravity + the exact mean of a_g over the step);
+4. impulses Λ from the LCP  U = W·Λ + U_free, 0 ≤ U_n ⊥ Λ_n ≥ 0, U_s = 0, with
+   W = J·M⁻¹·Jᵀ (block-tridiagonal, half-bandwidth 5) + ε·I, solved *exactly* as the
+   equivalent strictly convex QP by a primal active-set method (finite, no cycling) with
+   banded Cholesky solves, warm-started from the previous step's working set; every corner
+   is a speculative contact (it may close its current gap by the next midpoint, no more);
+5. v⁺ = v_free + M⁻¹·Jᵀ·Λ;  q⁺ = q_m ⊕ (h/2)·v⁺.
+
+Step 4 is the kinetic-energy projection of v_free onto the admissible velocities
+(Gauss's principle): it can only remove energy; with restitution 0 it is the inelastic
+impact law of physics note Sect. 5 (for a block, Housner's r).
+
+Collapse (status 1): the structure has passed its neutral configuration, tested on the
+frozen configuration: starting from rest at q⁺ under gravity alone, the structure moves
+*away* from its initial configuration (the mass-weighted distance D grows). For a block
+this is |theta| ≥ alpha exactly; for a four-hinge mechanism it is u ≥ delta. The test
+runs every ``CHECK_EVERY`` steps once some block has rotated by more than 0.1·delta_ref.
+Safety net: any block rotated by more than π/2.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+KD = 5  # half-bandwidth of W (3 rows per joint, neighbouring joints share one body)
+CHECK_EVERY = 4
+#: The collapse test runs once a block has rotated by CHECK_FROM·delta_ref.
+CHECK_FROM = 0.5
+_MAX_PIVOTS = 200
+#: Regularisation of W (relative to its largest diagonal term): W + eps·I is positive
+#: definite, so the LCP has one solution even for a statically indeterminate (closed) arch;
+#: it lets a closed contact creep at U_n = −eps·Λ (≈ 1e-8·g·h: negligible).
+EPS_REG = 1e-8
+#: Sign tolerance of the pivoting (relative to g·h): above the solve's round-off (cond ≈ 1/EPS_REG).
+TOL_LCP = 1e-7
+
+
+@nb.njit(cache=True)
+def _advance(x, y, ph, vx, vy, om, dt, xo, yo, pho):
+    """Exact rigid motion over dt with a constant spatial twist (rotation about the fixed
+    instantaneous centre); (vx, vy) are turned in place to the centroid's new velocity."""
+    for j in range(x.shape[0]):
+        a = om[j] * dt
+        if a == 0.0:
+            xo[j] = x[j] + vx[j] * dt
+            yo[j] = y[j] + vy[j] * dt
+        else:
+            sa = math.sin(a) / a
+            ca = 2.0 * math.sin(0.5 * a) ** 2 / a
+            xo[j] = x[j] + dt * (sa * vx[j] - ca * vy[j])
+            yo[j] = y[j] + dt * (sa * vy[j] + ca * vx[j])
+            # constant *spatial* twist: the centroid velocity turns with the body
+            c = math.cos(a)
+            s = math.sin(a)
+            u = vx[j]
+            vx[j] = c * u - s * vy[j]
+            vy[j] = s * u + c * vy[j]
+        pho[j] = ph[j] + a
+
+
+@nb.njit(cache=True)
+def _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr):
+    """Gaps (nj, 3: corner 0, corner 1, tangential offset) and Jacobian rows (3·nj, 3)
+    w.r.t. the L and R bodies at (x, y, ph)."""
+    for k in range(nj):
+        lb = k - 1
+        rb = k
+        if lb >= 0:
+            cl = math.cos(ph[lb])
+            sl = math.sin(ph[lb])
+            nx = cl * n0[k, 0] - sl * n0[k, 1]
+            ny = sl * n0[k, 0] + cl * n0[k, 1]
+        else:
+            cl = 1.0
+            sl = 0.0
+            nx = n0[k, 0]
+            ny = n0[k, 1]
+        if rb < nbod:
+            cr = math.cos(ph[rb])
+            sr = math.sin(ph[rb])
+        else:
+            cr = 1.0
+            sr = 0.0
+        best = 0
+        bax = 0.0
+        bay = 0.0
+        bbx = 0.0
+        bby = 0.0
+        bdx = 0.0
+        bdy = 0.0
+        for c in range(2):
+            if lb >= 0:
+                ax = cl * rl[k, c, 0] - sl * rl[k, c, 1]
+                ay = sl * rl[k, c, 0] + cl * rl[k, c, 1]
+                plx = x[lb] + ax
+                ply = y[lb] + ay
+            else:
+                ax = 0.0
+                ay = 0.0
+                plx = rl[k, c, 0]
+                ply = rl[k, c, 1]
+            if rb < nbod:
+                bx = cr * rr[k, c, 0] - sr * rr[k, c, 1]
+                by = sr * rr[k, c, 0] + cr * rr[k, c, 1]
+                prx = x[rb] + bx
+                pry = y[rb] + by
+            else:
+                bx = 0.0
+                by = 0.0
+                prx = rr[k, c, 0]
+                pry = rr[k, c, 1]
+            gap[k, c] = nx * (prx - plx) + ny * (pry - ply)
+            r = 3 * k + c
+            jl[r, 0] = -nx
+            jl[r, 1] = -ny
+            jl[r, 2] = -(ax * ny - ay * nx)
+            jr[r, 0] = nx
+            jr[r, 1] = ny
+            jr[r, 2] = bx * ny - by * nx
+            if c == 0 or gap[k, 1] < gap[k, 0]:
+                best = c
+                bax = ax
+                bay = ay
+                bbx = bx
+                bby = by
+                bdx = prx - plx
+                bdy = pry - ply
+        # no-slip row along the joint line s = (-ny, nx), at the corner in contact
+        sx = -ny
+        sy = nx
+        gap[k, 2] = sx * bdx + sy * bdy  # tangential offset of the corners in contact
+        r = 3 * k + 2
+        jl[r, 0] = -sx
+        jl[r, 1] = -sy
+        jl[r, 2] = -(bax * sy - bay * sx)
+        jr[r, 0] = sx
+        jr[r, 1] = sy
+        jr[r, 2] = bbx * sy - bby * sx
+        if lb < 0:
+            jl[3 * k, :] = 0.0
+            jl[3 * k + 1, :] = 0.0
+            jl[r, :] = 0.0
+        if rb >= nbod:
+            jr[3 * k, :] = 0.0
+            jr[3 * k + 1, :] = 0.0
+            jr[r, :] = 0.0
+        _ = best
+
+
+@nb.njit(cache=True)
+def _assemble_w(nbod, nj, jl, jr, im, ii, wb):
+    """Lower band of W = J M⁻¹ Jᵀ: wb[i, d] = W[i, i − d], d = 0..KD."""
+    n = 3 * nj
+    for i in range(n):
+        ki = i // 3
+        for d in range(KD + 1):
+            j = i - d
+            if j < 0:
+                wb[i, d] = 0.0
+                continue
+            kj = j // 3
+            s = 0.0
+            if ki == kj:
+                lb = ki - 1
+                if lb >= 0:
+                    s += (jl[i, 0] * jl[j, 0] + jl[i, 1] * jl[j, 1]) * im[lb] \
+                        + jl[i, 2] * jl[j, 2] * ii[lb]
+                if ki < nbod:
+                    s += (jr[i, 0] * jr[j, 0] + jr[i, 1] * jr[j, 1]) * im[ki] \
+                        + jr[i, 2] * jr[j, 2] * ii[ki]
+            elif ki == kj + 1:
+                b = kj  # R of joint kj, L of joint ki
+                s = (jl[i, 0] * jr[j, 0] + jl[i, 1] * jr[j, 1]) * im[b] \
+                    + jl[i, 2] * jr[j, 2] * ii[b]
+            wb[i, d] = s
+
+
+@nb.njit(cache=True)
+def _band_solve(n, kb, rhs, lb, out):
+    """Cholesky of the banded SPD matrix kb (lower band) into lb, then solve for rhs."""
+    for i in range(n):
+        for d in range(KD, -1, -1):
+            j = i - d
+            if j < 0:
+                continue
+            s = kb[i, d]
+            k0 = max(0, i - KD)
+            for k in range(k0, j):
+                s -= lb[i, i - k] * lb[j, j - k]
+            if d == 0:
+                if s <= 0.0:
+                    return False
+                lb[i, 0] = math.sqrt(s)
+            else:
+                lb[i, d] = s / lb[j, 0]
+    for i in range(n):
+        s = rhs[i]
+        for k in range(max(0, i - KD), i):
+            s -= lb[i, i - k] * out[k]
+        out[i] = s / lb[i, 0]
+    for i in range(n - 1, -1, -1):
+        s = out[i]
+        for k in range(i + 1, min(n, i + KD + 1)):
+            s -= lb[k, k - i] * out[k]
+        out[i] = s / lb[i, 0]
+    return True
+
+
+@nb.njit(cache=True)
+def _wmul(n, wb, lam, i):
+    """(W·lam)_i from the lower band."""
+    s = wb[i, 0] * lam[i]
+    for d in range(1, KD + 1):
+        j = i - d
+        if j >= 0:
+            s += wb[i, d] * lam[j]
+        j = i + d
+        if j < n:
+            s += wb[j, d] * lam[j]
+    return s
+
+
+@nb.njit(cache=True)
+def _lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
+    """Exact LCP by a primal active-set method on the equivalent strictly convex QP
+    min ½ΛᵀWΛ + ΛᵀU_free,  Λ_n ≥ 0 (normal rows 3k, 3k+1), Λ_s free (no-slip rows 3k+2
+    with ``inset``; the other rows are fixed at 0).
+
+    ``free`` (warm start in, final working set out): rows not held at their bound. Starts
+    from Λ = 0 (feasible); every full step strictly lowers the objective, so it cannot
+    cycle. Returns the number of iterations (negative if it did not finish).
+    """
+    for i in range(n):
+        lam[i] = 0.0
+        if i % 3 == 2:
+            free[i] = inset[i]
+    for it in range(_MAX_PIVOTS):
+        for i in range(n):
+            for d in range(KD + 1):
+                j = i - d
+                if j < 0:
+                    kb[i, d] = 0.0
+                elif free[i] and free[j]:
+                    kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
+                else:
+                    kb[i, d] = 1.0 if d == 0 else 0.0
+            rhs[i] = -ufree[i] if free[i] else 0.0
+        if not _band_solve(n, kb, rhs, lb, sol):
+            return -1
+        # largest feasible step towards the subproblem's solution
+        alpha = 1.0
+        block = -1
+        for i in range(n):
+            if free[i] and i % 3 != 2 and sol[i] < 0.0:
+                d = sol[i] - lam[i]
+                if d < 0.0:
+                    a = -lam[i] / d
+                    if a < alpha:
+                        alpha = a
+                        block = i
+        for i in range(n):
+            lam[i] += alpha * (sol[i] - lam[i])
+        if block >= 0 and sol[block] < -tol_l:
+            lam[block] = 0.0
+            free[block] = False
+            continue
+        if block >= 0:
+            for i in range(n):
+                lam[i] = sol[i]
+        # optimality: no held row wants to push (U_n ≥ 0 where Λ_n = 0)
+        worst = -tol_u
+        add = -1
+        for i in range(n):
+            if i % 3 == 2 or free[i]:
+                continue
+            u = ufree[i] + _wmul(n, wb, lam, i)
+            if u < worst:
+                worst = u
+                add = i
+        if add < 0:
+            for i in range(n):
+                if i % 3 != 2 and lam[i] < 0.0:
+                    lam[i] = 0.0
+            return it + 1
+        free[add] = True
+    return -_MAX_PIVOTS
+
+
+@nb.njit(cache=True)
+def _cumint(t, tk, ak, ck):
+    """∫_0^t a_g (piecewise linear through the knots, zero outside them)."""
+    m = tk.shape[0]
+    if t <= tk[0]:
+        return 0.0
+    if t >= tk[m - 1]:
+        return ck[m - 1]
+    lo = 0
+    hi = m - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if tk[mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    dt = t - tk[lo]
+    slope = (ak[lo + 1] - ak[lo]) / (tk[lo + 1] - tk[lo])
+    return ck[lo] + dt * (ak[lo] + 0.5 * dt * slope)
+
+
+@nb.njit(cache=True)
+def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, hh, eps,
+                  tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset, free, sol, vx, vy,
+                  om):
+    """Geometry at (x, y, ph), LCP for v_free, v⁺ into (vx, vy, om). Returns LCP iterations."""
+    n = 3 * nj
+    _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr)
+    for r in range(n):
+        k = r // 3
+        u = 0.0
+        lb_ = k - 1
+        if lb_ >= 0:
+            u += jl[r, 0] * vfx[lb_] + jl[r, 1] * vfy[lb_] + jl[r, 2] * vfo[lb_]
+        if k < nbod:
+            u += jr[r, 0] * vfx[k] + jr[r, 1] * vfy[k] + jr[r, 2] * vfo[k]
+        c = r - 3 * k
+        if c < 2 and gap[k, c] > gtol:
+            # speculative contact: the corner may close its gap by the next midpoint, no
+            # more; within the tolerance it is in contact (U_n ≥ 0, closed by _project)
+            u += gap[k, c] / hh
+        ufree[r] = u
+    # every corner is a (speculative) contact; the no-slip row is bilateral and always on
+    # (the model has no sliding: an open joint stays hinged at its corner)
+    for r in range(n):
+        inset[r] = True
+        if r % 3 == 2:
+            free[r] = True
+    _assemble_w(nbod, nj, jl, jr, im, ii, wb)
+    its = _lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol)
+    for j in range(nbod):
+        vx[j] = vfx[j]
+        vy[j] = vfy[j]
+        om[j] = vfo[j]
+    for r in range(n):
+        if lam[r] == 0.0:
+            continue
+        k = r // 3
+        lb_ = k - 1
+        if lb_ >= 0:
+            vx[lb_] += jl[r, 0] * lam[r] * im[lb_]
+            vy[lb_] += jl[r, 1] * lam[r] * im[lb_]
+            om[lb_] += jl[r, 2] * lam[r] * ii[lb_]
+        if k < nbod:
+            vx[k] += jr[r, 0] * lam[r] * im[k]
+            vy[k] += jr[r, 1] * lam[r] * im[k]
+            om[k] += jr[r, 2] * lam[r] * ii[k]
+    return its
+
+
+@nb.njit(cache=True)
+def _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb, lb, rhs,
+             mu, slip_tol):
+    """Post-stabilisation: move the bodies (minimum mass-weighted norm, velocities untouched)
+    so that the contacts that carried an impulse this step close exactly (gap = 0, no
+    tangential offset). Removes the O(h²) drift of interior hinges."""
+    n = 3 * nj
+    _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr)
+    _assemble_w(nbod, nj, jl, jr, im, ii, wb)
+    for i in range(n):
+        for d in range(KD + 1):
+            j = i - d
+            if j < 0:
+                kb[i, d] = 0.0
+            elif keep[i] and keep[j]:
+                kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
+            else:
+                kb[i, d] = 1.0 if d == 0 else 0.0
+        # normal rows: close the gap; no-slip rows: undo a drift-sized tangential offset
+        # (a larger one, left by a separation, is kept: pulling it back would add energy)
+        if keep[i] and (i % 3 != 2 or abs(gap[i // 3, 2]) <= slip_tol):
+            rhs[i] = -gap[i // 3, i % 3]
+        else:
+            rhs[i] = 0.0
+    if not _band_solve(n, kb, rhs, lb, mu):
+        return
+    for r in range(n):
+        if mu[r] == 0.0:
+            continue
+        k = r // 3
+        if k - 1 >= 0:
+            b = k - 1
+            x[b] += jl[r, 0] * mu[r] * im[b]
+            y[b] += jl[r, 1] * mu[r] * im[b]
+            ph[b] += jl[r, 2] * mu[r] * ii[b]
+        if k < nbod:
+            x[k] += jr[r, 0] * mu[r] * im[k]
+            y[k] += jr[r, 1] * mu[r] * im[k]
+            ph[k] += jr[r, 2] * mu[r] * ii[k]
+
+
+@nb.njit(cache=True)
+def run(mass, inertia, c0, rl0, rr0, n0, scale, tk, ak, amp, g, h, t_end, t_motion,
+        gtol_rel, thick_min, delta_ref, rec_every, out_t, out_q, out_state, out_e):
+    """Simulate one assembly, scaled by ``scale`` (lengths), on amp·a(t) [m/s²].
+
+    Returns (status, t_collapse, max_rot_over_delta, impacts, open_max, n_rec, steps,
+    lcp_failures). status 1: collapsed, 0: safe. Records every ``rec_every`` steps
+    (0: no record) into out_* while they have room.
+    """
+    nbod = mass.shape[0]
+    nj = n0.shape[0]
+    n = 3 * nj
+    # scaled geometry
+    cx0 = c0[:, 0] * scale
+    cy0 = c0[:, 1] * scale
+    rl = rl0 * scale
+    rr = rr0 * scale
+    im = 1.0 / mass
+    ii = 1.0 / (inertia * scale * scale)
+    gtol = gtol_rel * thick_min * scale
+    mtot = mass.sum()
+    # work arrays
+    x = cx0.copy()
+    y = cy0.copy()
+    ph = np.zeros(nbod)
+    vx = np.zeros(nbod)
+    vy = np.zeros(nbod)
+    om = np.zeros(nbod)
+    xm = np.empty(nbod)
+    ym = np.empty(nbod)
+    phm = np.empty(nbod)
+    vfx = np.empty(nbod)
+    vfy = np.empty(nbod)
+    vfo = np.empty(nbod)
+    tvx = np.empty(nbod)
+    tvy = np.empty(nbod)
+    tom = np.empty(nbod)
+    gap = np.zeros((nj, 3))
+    jl = np.zeros((n, 3))
+    jr = np.zeros((n, 3))
+    wb = np.zeros((n, KD + 1))
+    kb = np.zeros((n, KD + 1))
+    lb = np.zeros((n, KD + 1))
+    rhs = np.zeros(n)
+    sol = np.zeros(n)
+    lam = np.zeros(n)
+    ufree = np.zeros(n)
+    inset = np.zeros(n, dtype=np.bool_)
+    free = np.zeros(n, dtype=np.bool_)
+    t_inset = np.zeros(n, dtype=np.bool_)
+    t_free_ = np.zeros(n, dtype=np.bool_)
+    t_lam = np.zeros(n)
+    was_open = np.zeros((nj, 2), dtype=np.bool_)
+    keep = np.zeros(n, dtype=np.bool_)
+    mu = np.zeros(n)
+    gmid = np.zeros((nj, 2))
+    # ground-motion integral
+    m = tk.shape[0]
+    ck = np.zeros(m)
+    for i in range(1, m):
+        ck[i] = ck[i - 1] + 0.5 * (ak[i] + ak[i - 1]) * (tk[i] - tk[i - 1])
+    # W scale for the regularisation and tolerances
+    wmax = 0.0
+    for j in range(nbod):
+        if im[j] > wmax:
+            wmax = im[j]
+    eps = EPS_REG * wmax
+    tol_u = TOL_LCP * g * h
+    tol_l = TOL_LCP * g * h / wmax
+    e_scale = mtot * g * thick_min * scale
+    big = 0.5 * math.pi
+    status = 0
+    t_col = np.nan
+    mx = 0.0
+    impacts = 0
+    open_max = 0
+    n_rec = 0
+    fails = 0
+    t = 0.0
+    step = 0
+    i_prev = 0.0
+    n_steps = int(math.ceil(t_end / h))
+    cap = out_t.shape[0]
+    while step < n_steps:
+        _advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
+        i_new = _cumint(t + h, tk, ak, ck)
+        agbar = amp * (i_new - i_prev) / h
+        i_prev = i_new
+        for j in range(nbod):
+            vfx[j] = vx[j] - h * agbar
+            vfy[j] = vy[j] - h * g
+            vfo[j] = om[j]
+        its = _contact_step(nbod, nj, xm, ym, phm, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol,
+                            h, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree,
+                            inset, free, sol, vx, vy, om)
+        if its < 0:
+            fails += 1
+        _advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        any_keep = False
+        for r in range(n):
+            k = r // 3
+            c = r - 3 * k
+            if c < 2:  # closed corners that carried an impulse (not speculative ones)
+                keep[r] = lam[r] > 0.0 and gap[k, c] <= gtol
+            else:
+                keep[r] = True
+            any_keep = any_keep or keep[r]
+        # record the midpoint gaps (joint states, impacts) before the projection
+        for k in range(nj):
+            for c in range(2):
+                gmid[k, c] = gap[k, c]
+        if any_keep:
+            _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb,
+                     lb, rhs, mu, 100.0 * gtol)
+        t += h
+        step += 1
+        # joints, impacts
+        n_open = 0
+        for k in range(nj):
+            op = False
+            for c in range(2):
+                o = gmid[k, c] > gtol
+                if not o and was_open[k, c] and lam[3 * k + c] > 0.0:
+                    impacts += 1
+                was_open[k, c] = o
+                op = op or o
+            if op:
+                n_open += 1
+        if n_open > open_max:
+            open_max = n_open
+        rho = 0.0
+        for j in range(nbod):
+            a = abs(ph[j])
+            if a > rho:
+                rho = a
+        if rho / delta_ref > mx:
+            mx = rho / delta_ref
+        if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
+            out_t[n_rec] = t
+            ke = 0.0
+            pe = 0.0
+            for j in range(nbod):
+                out_q[n_rec, j, 0] = x[j]
+                out_q[n_rec, j, 1] = y[j]
+                out_q[n_rec, j, 2] = ph[j]
+                ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
+                pe += mass[j] * g * (y[j] - cy0[j])
+            out_e[n_rec] = ke + pe
+            for k in range(nj):
+                o0 = gmid[k, 0] > gtol
+                o1 = gmid[k, 1] > gtol
+                if o0 and o1:
+                    out_state[n_rec, k] = 3
+                elif o1:
+                    out_state[n_rec, k] = 1  # pivot on corner 0, corner 1 open
+                elif o0:
+                    out_state[n_rec, k] = 2
+                else:
+                    out_state[n_rec, k] = 0
+            n_rec += 1
+        if rho > big:
+            status = 1
+            t_col = t
+            break
+        if rho > CHECK_FROM * delta_ref and step % CHECK_EVERY == 0:
+            # frozen-configuration test: from rest at q under gravity alone
+            for j in range(nbod):
+                tvx[j] = 0.0
+                tvy[j] = -h * g
+                tom[j] = 0.0
+            for r in range(n):
+                t_inset[r] = inset[r]
+                t_free_[r] = free[r]
+            _contact_step(nbod, nj, x, y, ph, tvx, tvy, tom, rl, rr, n0, im, ii, gtol,
+                          0.5 * h, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, t_lam,
+                          ufree, t_inset, t_free_, sol, tvx, tvy, tom)
+            dd = 0.0
+            dn = 0.0
+            vn = 0.0
+            for j in range(nbod):
+                ddx = x[j] - cx0[j]
+                ddy = y[j] - cy0[j]
+                dd += mass[j] * (ddx * tvx[j] + ddy * tvy[j]) + ph[j] * tom[j] / ii[j]
+                dn += mass[j] * (ddx * ddx + ddy * ddy) + ph[j] * ph[j] / ii[j]
+                vn += mass[j] * (tvx[j] ** 2 + tvy[j] ** 2) + tom[j] ** 2 / ii[j]
+            if dd > 1e-6 * math.sqrt(dn * vn):
+                status = 1
+                t_col = t
+                break
+        if t >= t_motion:
+            # at rest: every joint closed and (numerically) no kinetic energy
+            if n_open == 0:
+                ke = 0.0
+                for j in range(nbod):
+                    ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
+                if ke < 1e-12 * e_scale:
+                    break
+    return status, t_col, mx, impacts, open_max, n_rec, step, fails
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch(mass, inertia, c0, rl0, rr0, n0, scales, tk, ak, amps, g, hs, t_end, t_motion,
+              gtol_rel, thick_min, delta_ref):
+    """Many (scale, amplitude, step) triples in parallel; summaries only."""
+    m = scales.shape[0]
+    status = np.zeros(m, dtype=np.int8)
+    t_col = np.full(m, np.nan)
+    mx = np.zeros(m)
+    nimp = np.zeros(m, dtype=np.int64)
+    nopen = np.zeros(m, dtype=np.int64)
+    fails = np.zeros(m, dtype=np.int64)
+    for i in nb.prange(m):
+        dt = np.zeros(0)
+        dq = np.zeros((0, 1, 3))
+        ds = np.zeros((0, 1), dtype=np.int8)
+        st, tc, mxa, ni, no, _, _, nf = run(mass, inertia, c0, rl0, rr0, n0, scales[i], tk,
+                                            ak, amps[i], g, hs[i], t_end, t_motion, gtol_rel,
+                                            thick_min, delta_ref, 0, dt, dq, ds, dt)
+        status[i] = st
+        t_col[i] = tc
+        mx[i] = mxa
+        nimp[i] = ni
+        nopen[i] = no
+        fails[i] = nf
+    return status, t_col, mx, nimp, nopen, fails
