@@ -17,30 +17,12 @@ from __future__ import annotations
 import argparse
 import time
 
-from rockarch.arch import (
-    analyse,
-    catenary,
-    circular,
-    mass_per_horizontal_length,
-    weighted_catenary,
-)
+from rockarch import paper
+from rockarch.arch import analyse, catenary, circular
 
 G = 9.81
 
-# paper Table 1: (f/l, d/l) -> (c1, c2, c3, c3', c4)
-TABLE1 = {
-    (0.2, 0.0125): (0.219, 0.823, 0.24, 0.28, 0.34),
-    (0.2, 0.025): (0.218, 0.829, 0.22, 0.30, 0.31),
-    (0.2, 0.05): (0.229, 0.853, 0.18, 0.34, 0.25),
-    (0.3, 0.0125): (0.270, 0.897, 0.26, 0.28, 0.40),
-    (0.3, 0.025): (0.267, 0.899, 0.24, 0.29, 0.36),
-    (0.3, 0.05): (0.263, 0.907, 0.22, 0.32, 0.34),
-    (0.3, 0.1): (0.292, 0.944, 0.17, 0.38, 0.27),
-    (0.4, 0.0125): (0.321, 0.983, 0.27, 0.29, 0.45),
-    (0.4, 0.025): (0.318, 0.984, 0.26, 0.30, 0.43),
-    (0.4, 0.05): (0.313, 0.988, 0.24, 0.31, 0.40),
-    (0.4, 0.1): (0.296, 1.006, 0.20, 0.36, 0.34),
-}
+TABLE1 = paper.TABLE1
 
 
 def pct(ours: float, paper: float) -> str:
@@ -89,13 +71,13 @@ def sect8() -> None:
 def table2() -> None:
     print("\nTable 2 / Sect. 9: replacement weighted catenaries carrying the circular arch's mass "
           "(l = 10 m, rise 2.924 m as in Sect. 9)")
-    q = mass_per_horizontal_length(circular(10.0, 2.89, 0.346))
-    for name, dl, (c1, c2, ap) in (("equivalent", 0.0293, (0.2473, 0.8914, 3.036)),
-                                   ("lower bound", 0.0207, (0.2437, 0.8896, 2.163))):
-        r = analyse(weighted_catenary(10.0, 2.924, 10.0 * dl, weights=q), g=G)
-        print(f"  {name:11s} d/l = {dl}: ap,min = {r.ap_min:.3f} ({ap}, {pct(r.ap_min, ap)}), "
-              f"c1 = {r.c1:.4f} ({c1}, {pct(r.c1, c1)}), c2 = {r.c2:.4f} ({c2}, "
-              f"{pct(r.c2, c2)}), p = {r.p:.3f} 1/s")
+    given = paper.table2_rows(G)["paper_geometry"]
+    for name, ref in paper.TABLE2.items():
+        r = given[name]
+        print(f"  {name:11s} d/l = {ref['d/l']}: ap,min = {r['ap_min']:.3f} ({ref['ap_min']}, "
+              f"{pct(r['ap_min'], ref['ap_min'])}), c1 = {r['c1']:.4f} ({ref['c1']}, "
+              f"{pct(r['c1'], ref['c1'])}), c2 = {r['c2']:.4f} ({ref['c2']}, "
+              f"{pct(r['c2'], ref['c2'])}), p = {r['p']:.3f} 1/s")
 
 
 def variants() -> None:

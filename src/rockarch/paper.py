@@ -1,0 +1,221 @@
+"""The paper's tables and figures, computed (used by ``rockarch reproduce`` and examples/).
+
+Reference values are the paper's (../shared/docs/reference-values.md); every function
+returns plain rows (dicts) with the paper's value next to rockarch's, or draws a figure.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from rockarch import motion, spectra
+from rockarch.arch import (
+    analyse,
+    catenary,
+    circular,
+    mass_per_horizontal_length,
+    weighted_catenary,
+)
+from rockarch.arch.dynamics import fourhinge_mechanism
+from rockarch.arch.replacement import replacement
+
+G = 9.81
+SIGNALS = ("sine", "square", "step")
+
+#: Table 1: (f/l, d/l) -> (c1, c2, c3, c3', c4) of the critical optimal four-hinge mechanism.
+TABLE1 = {
+    (0.2, 0.0125): (0.219, 0.823, 0.24, 0.28, 0.34),
+    (0.2, 0.025): (0.218, 0.829, 0.22, 0.30, 0.31),
+    (0.2, 0.05): (0.229, 0.853, 0.18, 0.34, 0.25),
+    (0.3, 0.0125): (0.270, 0.897, 0.26, 0.28, 0.40),
+    (0.3, 0.025): (0.267, 0.899, 0.24, 0.29, 0.36),
+    (0.3, 0.05): (0.263, 0.907, 0.22, 0.32, 0.34),
+    (0.3, 0.1): (0.292, 0.944, 0.17, 0.38, 0.27),
+    (0.4, 0.0125): (0.321, 0.983, 0.27, 0.29, 0.45),
+    (0.4, 0.025): (0.318, 0.984, 0.26, 0.30, 0.43),
+    (0.4, 0.05): (0.313, 0.988, 0.24, 0.31, 0.40),
+    (0.4, 0.1): (0.296, 1.006, 0.20, 0.36, 0.34),
+}
+#: Sect. 8 circular arch and Table 2 (l = 10 m).
+SECT8 = {"span": 10.0, "rise": 2.89, "d_over_l": 0.0346, "ap_min": 3.036, "c1": 0.242,
+         "c2": 0.768}
+TABLE2 = {
+    "equivalent": {"d/l": 0.0293, "c1": 0.2473, "c2": 0.8914, "ap_min": 3.036, "R/l": 0.0536,
+                   "p": 3.705, "rise": 2.924},
+    "lower-bound": {"d/l": 0.0207, "c1": 0.2437, "c2": 0.8896, "ap_min": 2.163,
+                    "R/l": 0.0528, "p": 11.82 / math.sqrt(10.0), "rise": 2.924},
+}
+#: Sect. 9 design example.
+SECT9 = {"thickness": 0.35, "ratio": 1.351, "pga_safe": 4.102, "pga_safe_g": 0.418}
+
+
+def table1_rows(g: float = G) -> list[dict]:
+    """Table 1: paper vs rockarch for every catenary arch (continuous mechanism, Eq. 14)."""
+    rows = []
+    for (fl, dl), (c1, c2, c3, c3p, c4) in TABLE1.items():
+        r = analyse(catenary(1.0, fl, dl), g=g)
+        rm = analyse(catenary(1.0, fl, dl), g=g, direction=-1)
+        rows.append({"f/l": fl, "d/l": dl, "paper": {"c1": c1, "c2": c2, "c3": c3,
+                                                       "c3p": c3p, "c4": c4},
+                     "ours": {"c1": r.c1, "c2": r.c2, "c3": r.c3, "c3p": r.c3p, "c4": r.c4,
+                              "c4_mirrored": rm.c4}})
+    return rows
+
+
+def sect8_rows(g: float = G) -> list[dict]:
+    """The Sect. 8 circular arch at both quoted slendernesses."""
+    rows = []
+    for dl in (0.0346, 0.0345):
+        r = analyse(circular(SECT8["span"], SECT8["rise"], SECT8["span"] * dl), g=g)
+        rows.append({"d/l": dl, "ap_min": r.ap_min, "c1": r.c1, "c2": r.c2, "p": r.p,
+                     "delta": r.delta, "hinges_x": [h.x for h in r.hinges]})
+    return rows
+
+
+def table2_rows(g: float = G) -> dict:
+    """Table 2 with (a) rockarch's replacement construction and (b) the paper's geometry."""
+    arch = circular(SECT8["span"], SECT8["rise"], SECT8["span"] * SECT8["d_over_l"])
+    rep = replacement(arch, g=g)
+    span = SECT8["span"]
+    fitted = {r.rule: {"d/l": r.thickness / span, "rise": r.rise, "c1": r.mechanism.c1,
+                       "c2": r.mechanism.c2, "ap_min": r.ap_min, "R/l": r.R_block / span,
+                       "p": r.p} for r in (rep.equivalent, rep.lower_bound)}
+    w = mass_per_horizontal_length(arch)
+    given = {}
+    for rule, ref in TABLE2.items():
+        m = analyse(weighted_catenary(span, ref["rise"], span * ref["d/l"], weights=w), g=g)
+        given[rule] = {"d/l": ref["d/l"], "rise": ref["rise"], "c1": m.c1, "c2": m.c2,
+                       "ap_min": m.ap_min, "R/l": 0.75 * g / m.p**2 / span, "p": m.p}
+    o = rep.original
+    return {"original": {"ap_min": o.ap_min, "c1": o.c1, "c2": o.c2, "p": o.p},
+            "fitted": fitted, "paper_geometry": given, "replacement": rep}
+
+
+def _boundary(system, signal: str, p, ratio) -> np.ndarray:
+    return spectra.compute_oas(system, motion.pulse(signal, 1.0, 1.0), p, ratio,
+                               progress=False).boundary.values
+
+
+def fig15(path, n_p: int = 40, rises=(0.2, 0.3, 0.4), thick=(0.0125, 0.025, 0.05)
+          ) -> list[dict]:
+    """Hypothesis 1 (Fig. 15): four-hinge OAS of catenary arches and the slender block."""
+    import matplotlib.pyplot as plt
+
+    from rockarch.plot import save_figure
+
+    colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
+    p = np.linspace(0.5, 10.0, n_p)
+    ratio = np.linspace(1.0, 8.0, 71)
+    block = spectra.BlockSystem(alpha=0.01)
+    fig, axes = plt.subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
+                             sharey=True, squeeze=False)
+    rows = []
+    for i, sig in enumerate(SIGNALS):
+        bb = _boundary(block, sig, p, ratio)
+        b_inf = np.where(np.isfinite(bb), bb, np.inf)
+        for j, rise in enumerate(rises):
+            ax = axes[i, j]
+            slender = None
+            for d, col in zip(thick, colors, strict=False):
+                mech = fourhinge_mechanism(catenary(1.0, rise, d))
+                b = _boundary(spectra.MechanismSystem(mech), sig, p, ratio)
+                rhs = np.where(np.isfinite(b), b, np.inf)
+                slender = rhs if slender is None else slender
+                ax.plot(p, b, color=col, lw=1.5, label=f"arch d/l = {d}")
+                rows.append({"signal": sig, "f/l": rise, "d/l": d, "e": mech.plus.e_close,
+                             "slender_safe": float(np.mean(slender <= rhs * (1 + 1e-3))),
+                             "block_safe": float(np.mean(b_inf <= rhs * (1 + 1e-3)))})
+            ax.plot(p, bb, "k--", lw=1.5, label="slender block (alpha = 0.01)")
+            ax.set_title(f"{sig}, T = 1 s, catenary f/l = {rise}", fontsize=9)
+            ax.set_ylim(1, 8)
+            ax.grid(alpha=0.3)
+            if i == 2:
+                ax.set_xlabel("p [1/s]")
+            if j == 0:
+                ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle("Hypothesis 1 (paper Fig. 15): OAS of critical optimal four-hinge mechanisms "
+                 "of catenary arches", fontsize=11)
+    fig.tight_layout()
+    save_figure(fig, path)
+    return rows
+
+
+def equivalence_rows(n_p: int = 19, thick=(0.05, 0.025, 0.0125, 0.005, 0.0025)) -> list[dict]:
+    """Four-hinge catenary (f/l = 0.3) vs the block with the same p and ap,min, d/l → 0."""
+    p = np.linspace(1.0, 10.0, n_p)
+    ratio = np.linspace(1.0, 8.0, 57)
+    rows = []
+    for sig in SIGNALS:
+        for d in thick:
+            mech = fourhinge_mechanism(catenary(1.0, 0.3, d))
+            blk = spectra.BlockSystem(alpha=math.atan(mech.ap_min / mech.g))
+            rel = (_boundary(spectra.MechanismSystem(mech), sig, p, ratio)
+                   / _boundary(blk, sig, p, ratio) - 1)
+            rows.append({"signal": sig, "d/l": d, "e": mech.plus.e_close,
+                         "max_dev": float(np.nanmax(np.abs(rel))),
+                         "mean_dev": float(np.nanmean(rel)),
+                         "block_safe": float(np.nanmean(rel >= -1e-3))})
+    return rows
+
+
+def fig19(path, rep=None, n_p: int = 37, extra=None) -> None:
+    """Fig. 19: OAS of the Sect. 8 arch (four-hinge; ``extra`` adds e.g. the MDOF model as
+    a (label, system) pair) and of the blocks of both replacement catenaries."""
+    import matplotlib.pyplot as plt
+
+    from rockarch.plot import save_figure
+
+    arch = circular(SECT8["span"], SECT8["rise"], SECT8["span"] * SECT8["d_over_l"])
+    rep = rep if rep is not None else replacement(arch)
+    p = np.linspace(1.0, 10.0, n_p)
+    ratio = np.linspace(1.0, 8.0, 57)
+    systems = [("circular arch, four-hinge mechanism",
+                spectra.MechanismSystem(fourhinge_mechanism(arch)), "k-")]
+    if extra is not None:
+        systems.append((extra[0], extra[1], "g-"))
+    for r, style in ((rep.equivalent, "b--"), (rep.lower_bound, "b:")):
+        systems.append((f"block of the {r.rule} replacement",
+                        spectra.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), sharey=True)
+    for ax, sig in zip(axes, SIGNALS, strict=True):
+        for label, system, style in systems:
+            ax.plot(p, _boundary(system, sig, p, ratio), style, lw=1.5, label=label)
+        ax.set_title(f"{sig}, T = 1 s", fontsize=9)
+        ax.set_xlabel("p [1/s]")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Paper Fig. 19: OAS of the circular arch (f/l = 0.289, d/l = 0.0346) and of "
+                 "its replacement blocks", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, path)
+
+
+def sect9(out: Path, n_p: int = 100) -> dict:
+    """Sect. 9 design example on a site OAS of the two bundled El Centro components."""
+    from rockarch import site
+    from rockarch.design import design_check
+    from rockarch.records import bundled_record_path
+    from rockarch.report import write_report
+
+    out = Path(out)
+    motions, hashes = site.load_records([bundled_record_path(180), bundled_record_path(270)])
+    site_ds = site.site_oas(motions, np.linspace(0.5, 10.0, n_p), np.linspace(1.0, 5.0, 81),
+                            hashes=hashes, progress=False)
+    site.save(site_ds, out / "site.nc")
+    arch = circular(10.0, 2.89, SECT9["thickness"])
+    res = design_check(arch, site_ds, rule="equivalent")
+    cmd = ("rockarch design --shape circular --span 10 --rise 2.89 --thickness 0.35 "
+           f"--site {out / 'site.nc'} --thickness-rule equivalent --curve envelope")
+    write_report(res, site_ds, out / "design_report.html", command=cmd,
+                 site_path=str(out / "site.nc"),
+                 inputs={"shape": "circular", "span [m]": 10.0, "rise [m]": 2.89,
+                         "thickness [m]": SECT9["thickness"]})
+    c = res.chosen
+    return {"thickness": c.thickness, "rise": c.rise, "p": c.p, "ap_min": c.ap_min,
+            "ratio": res.ratio, "pga_safe": res.pga_safe, "pga_safe_g": res.pga_safe / G,
+            "pga_with_paper_ratio": SECT9["ratio"] * c.ap_min, "command": cmd}
