@@ -1,0 +1,137 @@
+"""``rockarch reproduce``: regenerate the paper's tables and figures into one folder with an
+``index.html`` that shows the paper's numbers and rockarch's side by side."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import html
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+from rockarch import __version__, paper
+
+
+def _dev(ours: float, ref: float) -> str:
+    return f"{100 * (ours / ref - 1):+.1f} %"
+
+
+def _table(head: list[str], rows: list[list[str]]) -> str:
+    th = "".join(f"<th>{html.escape(h)}</th>" for h in head)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>"
+                   for r in rows)
+    return f"<table><tr>{th}</tr>{body}</table>"
+
+
+def _table1_html(rows: list[dict]) -> str:
+    out = []
+    for r in rows:
+        pp, oo = r["paper"], r["ours"]
+        out.append([r["f/l"], r["d/l"]]
+                   + [f"{pp[k]} / {oo[k]:.3f} ({_dev(oo[k], pp[k])})" for k in ("c1", "c2")]
+                   + [f"{pp['c3']}/{pp['c3p']} / {oo['c3']:.3f}/{oo['c3p']:.3f}",
+                      f"{pp['c4']} / {oo['c4']:.3f} ({_dev(oo['c4'], pp['c4'])})",
+                      f"{oo['c4_mirrored']:.3f} ({_dev(oo['c4_mirrored'], pp['c4'])})"])
+    return _table(["f/l", "d/l", "c1 paper / ours", "c2", "c3/c3'", "c4",
+                   "c4, delta on the other part"], out)
+
+
+def _table2_html(t2: dict) -> str:
+    rows = [["circular arch (d/l 0.0346)",
+             f"{paper.SECT8['c1']} / {t2['original']['c1']:.4f}",
+             f"{paper.SECT8['c2']} / {t2['original']['c2']:.4f}",
+             f"{paper.SECT8['ap_min']} / {t2['original']['ap_min']:.3f} "
+             f"({_dev(t2['original']['ap_min'], paper.SECT8['ap_min'])})", "–", "–",
+             f"– / {t2['original']['p']:.3f}"]]
+    for label, key in (("rockarch's construction", "fitted"),
+                       ("paper's geometry f = 2.924 m", "paper_geometry")):
+        for rule, ref in paper.TABLE2.items():
+            o = t2[key][rule]
+            rows.append([f"{rule}, {label}", f"{ref['c1']} / {o['c1']:.4f}",
+                         f"{ref['c2']} / {o['c2']:.4f}",
+                         f"{ref['ap_min']} / {o['ap_min']:.3f} "
+                         f"({_dev(o['ap_min'], ref['ap_min'])})",
+                         f"{ref['d/l']} / {o['d/l']:.4f}", f"{ref['R/l']} / {o['R/l']:.4f}",
+                         f"{ref['p']:.3f} / {o['p']:.3f} ({_dev(o['p'], ref['p'])})"])
+    return _table(["model", "c1 paper / ours", "c2", "ap,min [m/s²]", "d/l", "block R/l",
+                   "p [1/s]"], rows)
+
+
+def reproduce(out, *, quick: bool = False,
+              extra_sections: list[Callable[[Path, bool], str]] | None = None,
+              log: Callable[[str], None] = print) -> Path:
+    """Write Table 1, Sect. 8, Table 2, Figs. 15 and 19, the Sect. 9 design example (and
+    ``extra_sections``, e.g. the MDOF Figs. 16–17) into ``out`` with an index.html."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    t_start = time.perf_counter()
+    parts = []
+    log("Table 1 …")
+    parts.append("<h2>Table 1: catenary arches, constants of Eq. 14</h2>"
+                 "<p>paper / rockarch (deviation); continuous (critical optimal) "
+                 "mechanism, true voussoir polygons, exact kinematics.</p>"
+                 + _table1_html(paper.table1_rows()))
+    log("Sect. 8 …")
+    s8 = paper.sect8_rows()
+    parts.append("<h2>Sect. 8: the circular arch</h2>" + _table(
+        ["d/l", "ap,min paper / ours [m/s²]", "c1", "c2", "p [1/s]", "delta [rad]"],
+        [[r["d/l"], f"3.036 / {r['ap_min']:.3f} ({_dev(r['ap_min'], 3.036)})",
+          f"0.242 / {r['c1']:.3f}", f"0.768 / {r['c2']:.3f}", f"{r['p']:.3f}",
+          f"{r['delta']:.4f}"] for r in s8]))
+    log("Table 2 …")
+    t2 = paper.table2_rows()
+    parts.append("<h2>Table 2: replacement catenary arches</h2>" + _table2_html(t2))
+    log("Fig. 15 …")
+    rows15 = paper.fig15(out / "fig15.png", n_p=12 if quick else 40)
+    parts.append("<h2>Fig. 15 (Hypothesis 1)</h2><img src='fig15.png' width='100%'>" + _table(
+        ["signal", "f/l", "d/l", "impact e", "slender arch on the safe side",
+         "block on the safe side"],
+        [[r["signal"], r["f/l"], r["d/l"], f"{r['e']:.3f}", f"{100 * r['slender_safe']:.0f} %",
+          f"{100 * r['block_safe']:.0f} %"] for r in rows15]))
+    log("equivalence …")
+    eq = paper.equivalence_rows(n_p=7 if quick else 19,
+                                thick=(0.025, 0.005) if quick else
+                                (0.05, 0.025, 0.0125, 0.005, 0.0025))
+    parts.append("<h2>Four-hinge catenary vs block with the same p and ap,min</h2>" + _table(
+        ["signal", "d/l", "impact e", "max rel. deviation", "mean", "block on the safe side"],
+        [[r["signal"], r["d/l"], f"{r['e']:.3f}", f"{r['max_dev']:.4f}",
+          f"{r['mean_dev']:+.4f}", f"{100 * r['block_safe']:.0f} %"] for r in eq]))
+    for section in extra_sections or []:
+        parts.append(section(out, quick))
+    log("Fig. 19 …")
+    paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37)
+    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>")
+    log("Sect. 9 …")
+    s9 = paper.sect9(out, n_p=40 if quick else 100)
+    parts.append(
+        "<h2>Sect. 9: design example</h2><p>Site: the two bundled El Centro 1940 components "
+        "(the paper's site is not given numerically).</p>" + _table(
+            ["quantity", "paper", "rockarch"],
+            [["replacement thickness (equivalent) [m]", "0.293", f"{s9['thickness']:.3f}"],
+             ["replacement rise [m]", "2.924", f"{s9['rise']:.3f}"],
+             ["p [1/s]", "3.705", f"{s9['p']:.3f}"],
+             ["ap,min [m/s²]", "3.036", f"{s9['ap_min']:.3f}"],
+             ["ap/ap,min read on the site OAS", "1.351 (paper's site)",
+              f"{s9['ratio']:.3f} (El Centro site)"],
+             ["safe PGA with the paper's ratio 1.351 [m/s²]", "4.102",
+              f"{s9['pga_with_paper_ratio']:.3f}"],
+             ["safe PGA at the El Centro site", "–",
+              f"{s9['pga_safe']:.3f} m/s² = {s9['pga_safe_g']:.3f} g"]])
+        + "<p><a href='design_report.html'>design report</a>; rerun: <code>"
+        + html.escape(s9["command"]) + "</code></p>")
+    secs = time.perf_counter() - t_start
+    index = f"""<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">
+<title>rockarch: the paper reproduced</title><style>
+body {{ font-family: sans-serif; max-width: 70em; margin: 2em auto; color: #222; }}
+table {{ border-collapse: collapse; margin: 0.6em 0; font-size: 0.9em; }}
+th, td {{ border: 1px solid #bbb; padding: 0.2em 0.5em; }}</style></head><body>
+<h1>The paper's tables and figures, recomputed</h1>
+<p>rockarch {__version__}, {_dt.datetime.now().strftime('%Y-%m-%d %H:%M')},
+{'quick (coarse grids)' if quick else 'full'} run in {secs:.0f} s:
+<code>rockarch reproduce --out {html.escape(str(out))}{' --quick' if quick else ''}</code>.
+Deviations are discussed in docs/validation.md of the repository.</p>
+{''.join(parts)}
+</body></html>"""
+    (out / "index.html").write_text(index, encoding="utf-8")
+    log(f"wrote {out / 'index.html'} ({secs:.0f} s)")
+    return out / "index.html"
