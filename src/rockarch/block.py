@@ -176,20 +176,12 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
         name, duration = motion.name, motion.duration
     cap = int((duration + t_free) * block.p / h_factor * 1.1) + 1024
     model, prm, tab, amin, level, e = block.kernel_args()
-    while True:
-        out_t, out_th, out_om = np.empty(cap), np.empty(cap), np.empty(cap)
-        out_imp = np.empty(cap)
-        status, n_rec, n_imp, t_ov, mx, t_end = _k.run(
-            tk, ak, 1.0, model, block.p**2, block.p, prm, tab, amin, level, e, float(t_free),
-            float(h_factor), float(eps_rest), th0, om0, True, out_t, out_th, out_om, out_imp)
-        if status >= 0:
-            break
-        cap *= 4
+    status, t_ov, mx, t_end, t, th, om, imp = _k.run_recorded(
+        tk, ak, 1.0, model, block.p**2, block.p, prm, tab, amin, level, e, t_free, h_factor,
+        eps_rest, th0, om0, cap)
     return BlockResponse(
-        block=block, motion_name=name, t=out_t[:n_rec].copy(),
-        theta=out_th[:n_rec].copy(), theta_dot=out_om[:n_rec].copy(),
-        impacts=out_imp[:n_imp].copy(), overturned=status == 1,
-        t_overturn=float(t_ov) if status == 1 else None,
+        block=block, motion_name=name, t=t, theta=th, theta_dot=om, impacts=imp,
+        overturned=status == 1, t_overturn=float(t_ov) if status == 1 else None,
         max_theta_over_alpha=float(mx), t_end=float(t_end))
 
 

@@ -297,16 +297,10 @@ def simulate(mech: SDOFMechanism, motion: GroundMotion | None, *, p: float | Non
         name, duration = motion.name, motion.duration
     c = (p / mech.p) ** 2 * mech.g
     cap = int((duration + t_free) * p / h_factor * 1.1) + 1024
-    while True:
-        out = [np.empty(cap) for _ in range(4)]
-        status, n_rec, n_imp, t_c, mx, t_end = _k.run(
-            tk, ak, 1.0, model, c, p, prm, tab, amin, level, e, float(t_free),
-            float(h_factor), float(eps_rest), u0, float(u_dot0), True, *out)
-        if status >= 0:
-            break
-        cap *= 4
-    return MechanismResponse(mech, p, name, out[0][:n_rec].copy(), out[1][:n_rec].copy(),
-                             out[2][:n_rec].copy(), out[3][:n_imp].copy(), status == 1,
+    status, t_c, mx, t_end, t, u, ud, imp = _k.run_recorded(
+        tk, ak, 1.0, model, c, p, prm, tab, amin, level, e, t_free, h_factor, eps_rest, u0,
+        float(u_dot0), cap)
+    return MechanismResponse(mech, p, name, t, u, ud, imp, status == 1,
                              float(t_c) if status == 1 else None, float(mx), float(t_end))
 
 

@@ -125,6 +125,19 @@ def _locate(model, th, om, at, slope, hi, s, level, sgn, c, prm, tab):
     return hi, th_hi, om_hi, True
 
 
+@nb.njit(cache=True, inline="always")
+def _push(record, out_t, out_th, out_om, n, t, th, om):
+    """Append (t, theta, theta') to the history; -1 if the buffer is full."""
+    if not record:
+        return n
+    if n < 0 or n >= out_t.shape[0]:
+        return -1
+    out_t[n] = t
+    out_th[n] = th
+    out_om[n] = om
+    return n + 1
+
+
 @nb.njit(cache=True)
 def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, eps_rest,
         th0, om0, record, out_t, out_th, out_om, out_imp):
@@ -150,7 +163,6 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
     """
     hmax = h_factor / p
     n = tk.shape[0]
-    cap = out_t.shape[0]
     cap_imp = out_imp.shape[0]
     n_rec = 0
     n_imp = 0
@@ -166,11 +178,7 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
     if s != 0.0:
         max_r = s * th0 / level[0 if s > 0.0 else 1]
     t = tk[0]
-    if record:
-        out_t[0] = t
-        out_th[0] = th
-        out_om[0] = om
-        n_rec = 1
+    n_rec = _push(record, out_t, out_th, out_om, n_rec, t, th, om)
     for seg in range(n):
         if seg < n - 1:
             t0 = tk[seg]
@@ -212,13 +220,9 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
                 resting = False
                 th = 0.0
                 om = 0.0
-                if record:
-                    if n_rec >= cap:
-                        return -1, n_rec, n_imp, np.nan, max_r, t
-                    out_t[n_rec] = t
-                    out_th[n_rec] = 0.0
-                    out_om[n_rec] = 0.0
-                    n_rec += 1
+                n_rec = _push(record, out_t, out_th, out_om, n_rec, t, 0.0, 0.0)
+                if n_rec < 0:
+                    return -1, 0, n_imp, np.nan, max_r, t
             side = 0 if s > 0.0 else 1
             lev = level[side]
             h = min(hmax, t1 - t)
@@ -259,35 +263,24 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
                 om = om1
                 if s * th / lev > max_r:
                     max_r = s * th / lev
-                if record:
-                    if n_rec >= cap:
-                        return -1, n_rec, n_imp, np.nan, max_r, t
-                    out_t[n_rec] = t
-                    out_th[n_rec] = th
-                    out_om[n_rec] = om
-                    n_rec += 1
+                n_rec = _push(record, out_t, out_th, out_om, n_rec, t, th, om)
+                if n_rec < 0:
+                    return -1, 0, n_imp, np.nan, max_r, t
                 continue
             t = t + tau
             if ev_level > 0.0:
                 th = s * lev
                 om = om_e
                 max_r = 1.0
-                if record:
-                    if n_rec >= cap:
-                        return -1, n_rec, n_imp, np.nan, max_r, t
-                    out_t[n_rec] = t
-                    out_th[n_rec] = th
-                    out_om[n_rec] = om
-                    n_rec += 1
+                n_rec = _push(record, out_t, out_th, out_om, n_rec, t, th, om)
+                if n_rec < 0:
+                    return -1, 0, n_imp, np.nan, max_r, t
                 return 1, n_rec, n_imp, t, max_r, t
             # impact at theta = 0: the side switches, theta' -> e·theta'
+            n_rec = _push(record, out_t, out_th, out_om, n_rec, t, 0.0, om_e)
             if record:
-                if n_rec + 1 >= cap or n_imp >= cap_imp:
-                    return -1, n_rec, n_imp, np.nan, max_r, t
-                out_t[n_rec] = t
-                out_th[n_rec] = 0.0
-                out_om[n_rec] = om_e
-                n_rec += 1
+                if n_rec < 0 or n_imp >= cap_imp:
+                    return -1, 0, n_imp, np.nan, max_r, t
                 out_imp[n_imp] = t
             n_imp += 1
             om = e[side] * om_e
@@ -302,12 +295,27 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
                     resting = True
                     om = 0.0
                     s = 0.0
-            if record:
-                out_t[n_rec] = t
-                out_th[n_rec] = 0.0
-                out_om[n_rec] = om
-                n_rec += 1
+            n_rec = _push(record, out_t, out_th, out_om, n_rec, t, 0.0, om)
+            if n_rec < 0:
+                return -1, 0, n_imp, np.nan, max_r, t
     return 0, n_rec, n_imp, np.nan, max_r, t
+
+
+def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor,
+                 eps_rest, th0, om0, capacity):
+    """:func:`run` with the history: buffers of ``capacity`` samples, enlarged and rerun
+    until the history fits. Returns (status, t_collapse, max_ratio, t_end, t, theta,
+    theta', impact_times)."""
+    cap = int(capacity)
+    while True:
+        out = [np.empty(cap) for _ in range(4)]
+        status, n_rec, n_imp, t_c, mx, t_end = run(
+            tk, ak, scale, model, c, p, prm, tab, amin, level, e, float(t_free),
+            float(h_factor), float(eps_rest), float(th0), float(om0), True, *out)
+        if status >= 0:
+            return (status, t_c, mx, t_end, out[0][:n_rec].copy(), out[1][:n_rec].copy(),
+                    out[2][:n_rec].copy(), out[3][:n_imp].copy())
+        cap *= 4
 
 
 @nb.njit(cache=True, parallel=True)
