@@ -170,6 +170,15 @@ def oas(
     plot: Path = typer.Option(None, help="Write a PNG plot of the OAS."),
     json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
     progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
+    workers: int = typer.Option(None, help="Local worker processes (default: every core; "
+                                "small sweeps run in-process)."),
+    scheduler: str = typer.Option(None, help="Run on a running Dask scheduler "
+                                  "tcp://HOST:PORT."),
+    dask_workers: int = typer.Option(None, help="Start a local Dask cluster of N workers."),
+    store: Path = typer.Option(None, help="Resumable store of finished chunks (default: "
+                               "$ROCKARCH_CACHE or ~/.cache/rockarch)."),
+    no_store: bool = typer.Option(False, "--no-store", help="Keep no store (always "
+                                  "recompute)."),
 ) -> None:
     """Overturning acceleration spectrum (OAS) over p × ap/ap,min for one ground motion.
 
@@ -194,8 +203,21 @@ def oas(
     for path in (out, plot):
         if path is not None and not path.resolve().parent.is_dir():
             raise ValueError(f"{path.parent}: directory does not exist")
-    ds = spectra.compute_oas(sysobj, shape_motion, ps, ratios, tol=tol,
-                             progress=progress and sys.stderr.isatty())
+    from rockarch import sweep
+
+    chunk_store = sweep.store_for(store, no_store=no_store,
+                                  report=lambda msg: typer.echo(f"warning: {msg}", err=True))
+    executor = sweep.executor_for(workers=workers, scheduler=scheduler,
+                                  dask_workers=dask_workers, n_sims=ps.size * ratios.size)
+    try:
+        ds = spectra.compute_oas(sysobj, shape_motion, ps, ratios, tol=tol,
+                                 progress=progress and sys.stderr.isatty(),
+                                 executor=executor, store=chunk_store)
+    finally:
+        if executor is not None:
+            executor.close()
+    if chunk_store is not None and (chunk_store.reused or chunk_store.corrupt):
+        typer.echo(chunk_store.summary(), err=True)
     if out is not None:
         spectra.save(ds, out)
     if plot is not None:

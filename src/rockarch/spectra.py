@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 from tqdm.auto import tqdm
 
-from rockarch import __version__
+from rockarch import __version__, sweep
 from rockarch.block import EPS_REST, H_FACTOR, T_FREE, G, RigidBlock, simulate_batch
 from rockarch.mechanism import SDOFMechanism
 from rockarch.mechanism import simulate_batch as mechanism_simulate_batch
@@ -110,7 +110,8 @@ def _grid(name: str, values) -> np.ndarray:
 
 
 def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float = TOL,
-                progress: bool = True, chunks: int = 32) -> xr.Dataset:
+                progress: bool = True, chunks: int = 32, executor=None,
+                store=None) -> xr.Dataset:
     """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio`` (Sect. 1).
 
     Parameters
@@ -126,6 +127,16 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
         the boundary is the first overturning grid value.
     progress : bool
         Show a progress bar on stderr.
+    chunks : int
+        The grid is run in this many chunks of rows (p values); the bisection rounds are
+        split the same way.
+    executor : None, str or rockarch.sweep.Executor
+        Where the chunks run: None (default) in this process with numba threads on every
+        core; ``"serial"``, ``"processes"`` or ``"dask"`` (see :mod:`rockarch.sweep`), or an
+        :class:`~rockarch.sweep.Executor` to reuse (it is not closed here).
+    store : None, bool, path or rockarch.sweep.Store
+        Resumable store of finished chunks (None/False: none; True: the default cache
+        directory). A rerun reuses every stored chunk; results are bit-identical.
 
     Returns
     -------
@@ -150,14 +161,23 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     if tol > 0:
         width = np.diff(np.concatenate([[min(1.0, ratio[0])], ratio])).max()
         n_bisect = max(int(math.ceil(math.log2(max(width, tol) / tol))), 0)
-    with tqdm(total=n_p * n_r + n_bisect * n_p, desc=f"OAS {system.name}", unit="sim",
-              disable=not progress, leave=False) as bar:
-        for idx in rows:
-            pp, rr = np.meshgrid(p[idx], ratio, indexing="ij")
-            o, m = system.run(motion, pp, rr)
-            over[idx], resp[idx] = o, m
-            bar.update(pp.size)
-        boundary = _refine_boundary(system, motion, p, ratio, over, tol, bar)
+    store = sweep.as_store(store)
+    executor, owned = sweep.as_executor(executor)
+
+    def run(tasks):
+        return sweep.run_chunks(system, motion, tasks, executor=executor, store=store,
+                                bar=bar)
+
+    try:
+        with tqdm(total=n_p * n_r + n_bisect * n_p, desc=f"OAS {system.name}", unit="sim",
+                  disable=not progress, leave=False) as bar:
+            grid = [np.meshgrid(p[idx], ratio, indexing="ij") for idx in rows]
+            for idx, (o, m) in zip(rows, run(grid), strict=True):
+                over[idx], resp[idx] = o, m
+            boundary = _refine_boundary(run, p, ratio, over, tol, bar, len(rows))
+    finally:
+        if owned:
+            executor.close()
     ds = xr.Dataset(
         {
             "overturned": (("p", "ratio"), over),
@@ -180,7 +200,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     return ds
 
 
-def _refine_boundary(system, motion, p, ratio, over, tol, bar) -> np.ndarray:
+def _refine_boundary(run, p, ratio, over, tol, bar, chunks) -> np.ndarray:
     """Lowest overturning ratio per p: bisection between the last safe value below the
     first overturning grid cell and that cell (ratio ≤ 1 never moves, so 1 brackets it)."""
     first = np.where(over.any(axis=1), over.argmax(axis=1), -1)
@@ -193,9 +213,11 @@ def _refine_boundary(system, motion, p, ratio, over, tol, bar) -> np.ndarray:
     active = has & (hi - lo > tol)
     while active.any():
         mid = 0.5 * (lo[active] + hi[active])
-        o, _ = system.run(motion, p[active], mid)
-        bar.update(int(active.sum()))
         idx = np.flatnonzero(active)
+        # chunks of >= 16 values (one simulation each), as many as the grid's chunks
+        parts = np.array_split(np.arange(idx.size), max(min(chunks, idx.size // 16), 1))
+        res = run([(p[idx[k]], mid[k]) for k in parts])
+        o = np.concatenate([np.asarray(r[0], dtype=bool) for r in res])
         hi[idx[o]] = mid[o]
         lo[idx[~o]] = mid[~o]
         active = has & (hi - lo > tol)

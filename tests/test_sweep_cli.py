@@ -1,0 +1,95 @@
+"""`rockarch oas` sweep options (issue 7): --store/--no-store, --workers, --scheduler,
+--dask-workers; rerun is a cache hit; a corrupt chunk is reported; bad input exits 2."""
+
+import json
+import os
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+from typer.testing import CliRunner
+
+from rockarch.cli import app
+
+runner = CliRunner()
+REC = "src/rockarch/data/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
+BASE = ["oas", "--alpha", "0.2", "--record", REC, "--p-min", "1", "--p-max", "4",
+        "--p-steps", "8", "--ratio-steps", "9", "--t-free", "3", "--json"]
+
+
+def _run(args, **kw):
+    res = runner.invoke(app, args, **kw)
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout), res.stderr
+
+
+def test_store_rerun_is_a_cache_hit_and_corruption_is_reported(tmp_path):
+    store = tmp_path / "store"
+    first, err = _run([*BASE, "--store", str(store)])
+    assert err == ""
+    files = sorted(store.rglob("*.npz"))
+    assert len(files) >= 8
+    again, err = _run([*BASE, "--store", str(store)])
+    assert again == first
+    assert err.strip() == f"store {store}: {len(files)} chunks reused, 0 computed"
+    data = bytearray(files[3].read_bytes())
+    data[-7] ^= 0x01
+    files[3].write_bytes(bytes(data))
+    third, err = _run([*BASE, "--store", str(store)])
+    assert third == first
+    lines = err.strip().splitlines()
+    assert len(lines) == 2 and lines[0].startswith(f"warning: store chunk {files[3]} is corrupt")
+    assert lines[1].endswith(f"{len(files) - 1} chunks reused, 1 computed, 1 corrupt "
+                             "(recomputed)")
+
+
+def test_default_store_and_no_store(tmp_path):
+    cache = tmp_path / "cache"
+    out, _ = _run(BASE, env={"ROCKARCH_CACHE": str(cache)})
+    assert len(list(cache.rglob("*.npz"))) >= 8
+    nothing = tmp_path / "nothing"
+    out2, err = _run([*BASE, "--no-store"], env={"ROCKARCH_CACHE": str(nothing)})
+    assert out2 == out and err == "" and not nothing.exists()
+    out3, _ = _run([*BASE, "--no-store", "--workers", "2"])
+    assert out3 == out
+
+
+@pytest.mark.parametrize("extra, msg", [
+    (["--workers", "0"], "workers must be a positive integer"),
+    (["--workers", "-1"], "workers must be a positive integer"),
+    (["--dask-workers", "0"], "dask_workers must be a positive integer"),
+    (["--scheduler", "localhost:8786"], "malformed scheduler address"),
+    (["--scheduler", "tcp://127.0.0.1:1", "--dask-workers", "2"], "not both"),
+    (["--scheduler", "tcp://127.0.0.1:1", "--workers", "2"], "--workers is for local"),
+    (["--store", "/tmp", "--no-store"], "not both"),
+    (["--store", "README.md/sub"], "store directory is not writable"),
+])
+def test_bad_sweep_options(extra, msg):
+    res = runner.invoke(app, [*BASE, *extra])
+    assert res.exit_code == 2
+    assert res.stderr.startswith("error: ") and msg in res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1
+
+
+def test_unreachable_scheduler_is_one_line_within_10_s(tmp_path):
+    """A closed port, and a port that accepts but never answers: exit 2, no hang."""
+    with socket.socket() as srv:
+        srv.bind(("127.0.0.1", 0))
+        srv.listen(8)
+        silent = srv.getsockname()[1]
+        with socket.socket() as tmp:
+            tmp.bind(("127.0.0.1", 0))
+            closed = tmp.getsockname()[1]
+        exe = os.path.join(os.path.dirname(sys.executable), "rockarch")
+        procs = [(port, time.monotonic(), subprocess.Popen(
+            [exe, *BASE, "--no-store", "--scheduler", f"tcp://127.0.0.1:{port}"],
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True))
+            for port in (silent, closed)]
+        for port, t0, proc in procs:
+            out, err = proc.communicate(timeout=30)
+            assert time.monotonic() - t0 < 10
+            assert proc.returncode == 2 and out == ""
+            assert err.startswith(f"error: cannot reach a Dask scheduler at tcp://127.0.0.1:"
+                                  f"{port}") and len(err.strip().splitlines()) == 1

@@ -1,0 +1,93 @@
+"""An interrupted sweep (kill -9 or Ctrl-C) resumes from its store: identical result, and
+no finished chunk is computed twice (issue 7)."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+
+from rockarch import motion as mo
+from rockarch import spectra, sweep
+
+SCRIPT = textwrap.dedent('''
+    import dataclasses, json, sys, time
+    import numpy as np
+    from rockarch import motion as mo, spectra, sweep
+
+    @dataclasses.dataclass(frozen=True)
+    class SlowBlock(spectra.BlockSystem):
+        """A block whose chunks take a while, so that the sweep can be interrupted."""
+        def run(self, motion, p, ratio):
+            time.sleep(0.08)
+            return super().run(motion, p, ratio)
+
+    if __name__ == "__main__":
+        store = sweep.Store(sys.argv[1])
+        ds = spectra.compute_oas(SlowBlock(alpha=0.2, t_free=3.0), mo.pulse("sine", 1.0, 0.6),
+                                 np.linspace(0.8, 4.0, 16), np.linspace(1.0, 4.0, 13),
+                                 progress=False, chunks=16, executor=sys.argv[2])
+        np.savez(sys.argv[3], overturned=ds["overturned"].values,
+                 max_response=ds["max_response"].values, boundary=ds["boundary"].values)
+        print(json.dumps({"reused": store.reused, "computed": store.computed}))
+''').replace("executor=sys.argv[2])", "executor=sys.argv[2], store=store)")
+
+
+def _chunks(root):
+    return sorted((root / "chunks").rglob("*.npz"))
+
+
+@pytest.mark.parametrize("sig, mode", [(signal.SIGKILL, "serial"),
+                                       (signal.SIGINT, "serial"),
+                                       (signal.SIGKILL, "processes")])
+def test_interrupted_sweep_resumes(tmp_path, sig, mode):
+    script = tmp_path / "sweep_job.py"
+    script.write_text(SCRIPT)
+    store = tmp_path / "store"
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    cmd = [sys.executable, str(script), str(store), mode, str(tmp_path / "out.npz")]
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while len(_chunks(store)) < 4 if store.exists() else True:
+        assert proc.poll() is None, proc.stderr.read().decode()
+        assert time.monotonic() < deadline
+        time.sleep(0.02)
+    proc.send_signal(sig)
+    proc.communicate(timeout=30)
+    assert proc.returncode != 0  # it was interrupted, not finished
+    finished = len(_chunks(store))
+    assert not (tmp_path / "out.npz").exists()
+
+    res = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    counts = json.loads(res.stdout)
+    total = len(_chunks(store))
+    # every chunk that was finished before the interruption is reused, none is recomputed
+    assert counts == {"reused": finished, "computed": total - finished}
+    assert 4 <= finished < total
+    assert not list(store.rglob("*.part"))
+
+    want = spectra.compute_oas(spectra.BlockSystem(alpha=0.2, t_free=3.0),
+                               mo.pulse("sine", 1.0, 0.6), np.linspace(0.8, 4.0, 16),
+                               np.linspace(1.0, 4.0, 13), progress=False)
+    with np.load(tmp_path / "out.npz") as got:
+        for v in ("overturned", "max_response", "boundary"):
+            np.testing.assert_array_equal(got[v], want[v].values, strict=True)
+
+    if sig == signal.SIGKILL and mode == "serial":  # and a third run is a pure cache hit
+        res = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=120)
+        assert json.loads(res.stdout) == {"reused": total, "computed": 0}
+
+
+def test_store_counts_are_per_chunk(tmp_path):
+    st = sweep.Store(tmp_path)
+    shape = mo.pulse("sine", 1.0, 0.6)
+    blk = spectra.BlockSystem(alpha=0.2, t_free=3.0)
+    spectra.compute_oas(blk, shape, [1.0, 2.0], [1.0, 3.0], progress=False, tol=0, chunks=2,
+                        store=st)
+    assert (st.computed, st.reused) == (2, 0) and len(_chunks(tmp_path)) == 2
