@@ -28,7 +28,9 @@ from rockarch.mdof.simulate import (
     simulate,
     simulate_batch,
 )
+from rockarch.mdof.spectra import MDOFSystem
 
 __all__ = ["GAP_TOL", "H_FACTOR", "MIN_VOUSSOIRS", "Assembly", "MDOFBatch", "MDOFResponse",
+           "MDOFSystem",
            "arch_assembly", "block_from_p_alpha", "column", "simulate", "simulate_batch",
            "single_block", "stack"]

@@ -525,8 +525,24 @@ def run(mass, inertia, c0, rl0, rr0, n0, scale, tk, ak, amp, g, h, t_end, t_moti
             for c in range(2):
                 gmid[k, c] = gap[k, c]
         if any_keep:
+            v0 = 0.0
+            for j in range(nbod):
+                v0 += mass[j] * y[j]
             _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb,
                      lb, rhs, mu, 100.0 * gtol)
+            # the projection must not add energy: a potential-energy gain is taken from the
+            # kinetic energy (it is O(h²) drift, not physics)
+            dv = -g * v0
+            ke = 0.0
+            for j in range(nbod):
+                dv += g * mass[j] * y[j]
+                ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
+            if dv > 0.0 and ke > 0.0:
+                f = math.sqrt(max(0.0, 1.0 - dv / ke))
+                for j in range(nbod):
+                    vx[j] *= f
+                    vy[j] *= f
+                    om[j] *= f
         t += h
         step += 1
         # joints, impacts

@@ -15,7 +15,7 @@ from rockarch.motion import GroundMotion
 
 #: Default time step h = H_FACTOR / p (p of the assembly at its actual size). The
 #: convergence study in docs/mdof.md: halving it changes < 1 % of an OAS map's cells.
-H_FACTOR = 0.01
+H_FACTOR = 0.005
 #: Default contact tolerance, as a fraction of the thinnest joint: a corner with a gap
 #: below it counts as touching (index set of the contact problem) and as closed.
 GAP_TOL = 1e-4
