@@ -482,6 +482,8 @@ class Executor:
         key = id(obj)
         hit = self._scattered.get(key)
         if hit is None or hit[0] is not obj:
+            if len(self._scattered) >= 16:  # a site sweep: many motions, keep the recent
+                self._scattered.pop(next(iter(self._scattered)))
             hit = (obj, client.scatter(obj, broadcast=True, hash=False))
             self._scattered[key] = hit
         return hit[1]
@@ -496,8 +498,8 @@ class Executor:
                 for p, r in tasks]
         index = {f.key: i for i, f in enumerate(futs)}
         try:
-            for f in as_completed(futs):
-                done(index[f.key], f.result())
+            for f, res in as_completed(futs, with_results=True):
+                done(index[f.key], res)
         except BaseException:
             client.cancel(futs)
             raise
