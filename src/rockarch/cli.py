@@ -39,6 +39,7 @@ class System(str, Enum):
     fourhinge = "fourhinge"
     frame = "frame"
     sdof = "sdof"
+    mdof = "mdof"
 
 
 class Shape(str, Enum):
@@ -62,6 +63,11 @@ def _oas_system(system: System, *, alpha, shape, rise_over_span, thickness_over_
     if system is System.block:
         need(alpha=alpha)
         return spectra.BlockSystem(alpha=alpha, g=g, restitution=restitution, t_free=t_free)
+    if system is System.mdof:
+        need(shape=shape, rise_over_span=rise_over_span,
+             thickness_over_span=thickness_over_span, blocks=blocks)
+        return _mdof_arch_system(shape, rise_over_span, thickness_over_span, blocks, g,
+                                 restitution, t_free)
     from rockarch import mechanism as mc
 
     if system is System.fourhinge:
@@ -82,6 +88,20 @@ def _oas_system(system: System, *, alpha, shape, rise_over_span, thickness_over_
         need(delta=delta, ap_min=ap_min)
         mech = mc.generic(1.0, delta, ap_min, g, restitution)
     return spectra.MechanismSystem(mech, t_free=t_free)
+
+
+def _mdof_arch_system(shape, rise_over_span, thickness_over_span, blocks, g, restitution,
+                      t_free):
+    """MDOF arch of span 1 (p varies by scaling): ratio relative to its N-voussoir ap,min."""
+    from rockarch.arch.geometry import make_arch
+    from rockarch.mdof import MDOFSystem, arch_assembly
+
+    if restitution is not None:
+        raise ValueError("--system mdof has no --restitution: joints close with inelastic "
+                         "impacts (the restitution follows from the geometry)")
+    arch = make_arch(shape.value, 1.0, positive("--rise-over-span", rise_over_span),
+                     positive("--thickness-over-span", thickness_over_span))
+    return MDOFSystem(arch_assembly(arch, blocks, g=positive("--g", g)), t_free=t_free)
 
 
 def _check_blocks(blocks: int | None) -> int | None:
@@ -140,11 +160,12 @@ def oas(
                                   "rigid block, the four-hinge mechanism of an arch, a rocking "
                                   "frame, or any SDOF mechanism given by delta and ap,min."),
     alpha: float = typer.Option(None, help="block/frame: slenderness atan(B/H) [rad]."),
-    shape: Shape = typer.Option(None, help="fourhinge: arch shape."),
-    rise_over_span: float = typer.Option(None, help="fourhinge: f/l."),
-    thickness_over_span: float = typer.Option(None, help="fourhinge: d/l."),
+    shape: Shape = typer.Option(None, help="fourhinge/mdof: arch shape."),
+    rise_over_span: float = typer.Option(None, help="fourhinge/mdof: f/l."),
+    thickness_over_span: float = typer.Option(None, help="fourhinge/mdof: d/l."),
     blocks: int = typer.Option(None, help="fourhinge: voussoirs (critical mechanism); "
-                               "default the continuous arch (critical optimal)."),
+                               "default the continuous arch (critical optimal). mdof: "
+                               "voussoirs (required)."),
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
@@ -393,6 +414,105 @@ def simulate_sdof(
     mech = generic(p, delta, ap_min, g, restitution)
     _simulate_mechanism(mech, None, mech.name, signal, period, cycles, record, units, ratio,
                         t_free, plot, json_out)
+
+
+def _mdof_assembly(shape, span, rise, thickness, blocks, column, g):
+    """The MDOF structure of `simulate mdof` / `animate`: an arch or a column."""
+    from rockarch import mdof
+
+    g = positive("--g", g)
+    if column is not None:
+        if shape is not None or blocks is not None:
+            raise ValueError("give either --column or an arch (--shape ... --blocks N)")
+        rows = [r for r in column.split(";") if r.strip()]
+        return mdof.column([_float_list("--column block", r) for r in rows], g=g)
+    if shape is None or span is None or rise is None or thickness is None or blocks is None:
+        raise ValueError("give the arch: --shape S --span L --rise F --thickness D --blocks N "
+                         "(or a column: --column 'B,H;B,H')")
+    from rockarch.arch.geometry import make_arch
+
+    arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
+                     positive("--thickness", thickness))
+    return mdof.arch_assembly(arch, blocks, g=g)
+
+
+MDOF_SHAPE_OPT = typer.Option(None, help="Arch shape.")
+MDOF_SPAN_OPT = typer.Option(None, help="Span l of the axis [m].")
+MDOF_RISE_OPT = typer.Option(None, help="Rise f of the axis [m].")
+MDOF_THICK_OPT = typer.Option(None, help="Uniform thickness d [m].")
+MDOF_BLOCKS_OPT = typer.Option(None, help="Number of voussoirs N (at least 5).")
+MDOF_COLUMN_OPT = typer.Option(None, help="A column instead of an arch: blocks bottom to "
+                               "top, 'B,H;B,H' or 'B,H,x_centre;...' [m].")
+MDOF_H_OPT = typer.Option(0.005, help="Time step × p (safe range 1e-4 … 0.05).")
+MDOF_TOL_OPT = typer.Option(1e-4, help="Contact tolerance / joint thickness (1e-10 … 1e-3).")
+
+
+def _mdof_header(a) -> str:
+    return (f"{a.name}: {a.n_blocks} blocks, {a.n_joints} joints, ap,min={a.ap_min:.4g} m/s², "
+            f"p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad (Moreau–Jean, docs/mdof.md)")
+
+
+@simulate_app.command("mdof")
+@guarded
+def simulate_mdof(
+    shape: Shape = MDOF_SHAPE_OPT, span: float = MDOF_SPAN_OPT, rise: float = MDOF_RISE_OPT,
+    thickness: float = MDOF_THICK_OPT, blocks: int = MDOF_BLOCKS_OPT,
+    column: str = MDOF_COLUMN_OPT,
+    signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
+    record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
+    t_free: float = TFREE_OPT, g: float = G_OPT, h_factor: float = MDOF_H_OPT,
+    gap_tol: float = MDOF_TOL_OPT, json_out: bool = JSON_OPT,
+) -> None:
+    """Simulate a multi-block arch (any joint may open and close) or column (MDOF model).
+
+    --ratio is relative to the ap,min of the N-voussoir arch (thrust-line LP).
+    """
+    from rockarch import mdof
+
+    a = _mdof_assembly(shape, span, rise, thickness, blocks, column, g)
+    mdof.simulate(a, None, t_free=t_free, h_factor=h_factor, gap_tol=gap_tol)  # validate
+    _run_simulation(a, _mdof_header(a), a.ap_min,
+                    lambda m: mdof.simulate(a, m, t_free=t_free, h_factor=h_factor,
+                                            gap_tol=gap_tol),
+                    signal, period, cycles, record, units, ratio, None, json_out)
+
+
+@app.command()
+@guarded
+def animate(
+    out: Path = typer.Option(..., help="GIF file to write."),
+    shape: Shape = MDOF_SHAPE_OPT, span: float = MDOF_SPAN_OPT, rise: float = MDOF_RISE_OPT,
+    thickness: float = MDOF_THICK_OPT, blocks: int = MDOF_BLOCKS_OPT,
+    column: str = MDOF_COLUMN_OPT,
+    signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
+    record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
+    t_free: float = typer.Option(3.0, help="Free motion after the ground motion ends [s]."),
+    g: float = G_OPT, h_factor: float = MDOF_H_OPT, gap_tol: float = MDOF_TOL_OPT,
+    fps: int = typer.Option(20, help="Frames per second."),
+    frames: int = typer.Option(150, help="Largest number of frames."),
+    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1)."),
+    json_out: bool = JSON_OPT,
+) -> None:
+    """Animate an MDOF arch or column on a ground motion: blocks, open joints, a_g(t)."""
+    from rockarch import mdof
+    from rockarch.mdof.animate import animate as write_gif
+
+    a = _mdof_assembly(shape, span, rise, thickness, blocks, column, g)
+    if out.suffix.lower() != ".gif":
+        raise ValueError(f"--out must be a .gif file, got {out}")
+    if not out.resolve().parent.is_dir():
+        raise ValueError(f"{out.parent}: directory does not exist")
+    if not (ratio >= 0 and np.isfinite(ratio)):
+        raise ValueError(f"--ratio must be a finite number >= 0, got {ratio}")
+    shape_m = _shape(signal, period, cycles, record, units)
+    mot = shape_m.scaled(ratio * a.ap_min / shape_m.pga)
+    resp = mdof.simulate(a, mot, t_free=t_free, h_factor=h_factor, gap_tol=gap_tol)
+    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify)
+    if json_out:
+        print_json({**resp.summary(), "out": str(out)})
+        return
+    typer.echo(_mdof_header(a))
+    typer.echo(f"wrote {out}")
 
 
 # --- arch statics (rockarch.arch; imported inside the command: scipy.optimize is slow to load)
