@@ -43,7 +43,7 @@ def _chunks(root):
 
 
 @pytest.mark.parametrize("sig, mode", [(signal.SIGKILL, "serial"),
-                                       (signal.SIGINT, "serial"),
+                                       (signal.SIGINT, "processes"),
                                        (signal.SIGKILL, "processes")])
 def test_interrupted_sweep_resumes(tmp_path, sig, mode):
     script = tmp_path / "sweep_job.py"

@@ -473,10 +473,21 @@ class Executor:
                 finished, pending = wait(pending, return_when=FIRST_COMPLETED)
                 for f in finished:
                     done(futs[f], f.result())
-        except BaseException:
+        except BaseException as exc:
             for f in futs:
                 f.cancel()
+            if isinstance(exc, KeyboardInterrupt):
+                self._abort_pool()
             raise
+
+    def _abort_pool(self) -> None:
+        """Ctrl-C: stop the workers now rather than after their current chunks."""
+        pool, self._pool = self._pool, None
+        if pool is None:
+            return
+        for proc in list(getattr(pool, "_processes", {}).values()):
+            proc.terminate()
+        pool.shutdown(wait=False, cancel_futures=True)
 
     def _scatter(self, client, obj):
         key = id(obj)
