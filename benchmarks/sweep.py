@@ -17,6 +17,7 @@ used (every chunk is computed). The maps of every mode are checked to be bit-ide
 from __future__ import annotations
 
 import argparse
+import os
 import time
 
 import numpy as np
@@ -63,22 +64,28 @@ def main() -> None:
 
     print(f"block OAS alpha=0.2, {motion.name} ({motion.duration:.0f} s), "
           f"{args.n} x {args.n} grid, 32 chunks, tol 1e-3; best of {args.runs}")
-    results = {}
+    print(f"load average before: {os.getloadavg()[0]:.2f} (2 cores: > 0.5 means others "
+          "are running and the figures are not clean)")
+    results, starts = {}, {}
     with sweep.Executor("processes", workers=1) as one, \
             sweep.Executor("processes", workers=2) as two, \
             sweep.Executor(dask_workers=2) as dask:
-        for name, ex in (("1 process", one), ("2 processes", two), ("dask 2 workers", dask)):
+        modes = {"1 process": one, "2 processes": two, "dask 2 workers": dask,
+                 "in-process threads": None}
+        for name, ex in modes.items():
             t0 = time.perf_counter()
             compute_oas(system, motion, p[:4], ratio[:3], progress=False, chunks=4,
                         executor=ex)  # start the pool / cluster and load the kernels
-            start = time.perf_counter() - t0
-            t, ds = best_of(args.runs, lambda ex=ex: oas(ex))
-            results[name] = (t, ds)
-            print(f"  {name:<22} {t:7.2f} s  ({n_sims / t:8.0f} grid sims/s; "
-                  f"start-up {start:.2f} s)", flush=True)
-    t, ds = best_of(args.runs, lambda: oas(None))
-    results["in-process threads"] = (t, ds)
-    print(f"  {'in-process threads':<22} {t:7.2f} s  ({n_sims / t:8.0f} grid sims/s)")
+            starts[name] = time.perf_counter() - t0
+        for _ in range(args.runs):  # interleaved: a burst of load hits every mode alike
+            for name, ex in modes.items():
+                t, ds = best_of(1, lambda ex=ex: oas(ex))
+                if name not in results or t < results[name][0]:
+                    results[name] = (t, ds)
+    for name, (t, _) in results.items():
+        start = f"; start-up {starts[name]:.2f} s" if modes[name] is not None else ""
+        print(f"  {name:<22} {t:7.2f} s  ({n_sims / t:8.0f} grid sims/s{start})")
+    print(f"load average after: {os.getloadavg()[0]:.2f}")
 
     ref = results["1 process"][1]
     for name, (_, ds) in results.items():

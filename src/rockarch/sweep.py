@@ -109,12 +109,23 @@ def chunk_key(system, motion, p, ratio) -> str:
     ``cache_token()``), the motion's samples (:meth:`GroundMotion.fingerprint`), the exact
     p and ratio values, and the rockarch / numpy / numba versions.
     """
+    return _key_of(_base_hash(system, motion), p, ratio)
+
+
+def _base_hash(system, motion):
+    """The hash state after the versions, the system and the motion (shared by every chunk
+    of a sweep: hashed once, copied per chunk)."""
     import numba
 
     h = hashlib.sha256()
     _feed(h, ("rockarch-chunk", STORE_FORMAT, __version__, np.__version__, numba.__version__))
     _feed(h, system)
     _feed(h, _motion_token(motion))
+    return h
+
+
+def _key_of(base, p, ratio) -> str:
+    h = base.copy()
     _feed(h, np.asarray(p, dtype=float))
     _feed(h, np.asarray(ratio, dtype=float))
     return h.hexdigest()
@@ -541,8 +552,8 @@ def run_chunks(system, motion, tasks: Sequence[tuple[np.ndarray, np.ndarray]], *
     tasks = [(np.asarray(p, dtype=float), np.asarray(r, dtype=float)) for p, r in tasks]
     results: list = [None] * len(tasks)
     shapes = [np.broadcast_shapes(p.shape, r.shape) for p, r in tasks]
-    keys = [chunk_key(system, motion, p, r) for p, r in tasks] if store is not None \
-        else [None] * len(tasks)
+    base = _base_hash(system, motion) if store is not None else None
+    keys = [_key_of(base, p, r) if base is not None else None for p, r in tasks]
     todo = []
     for i, key in enumerate(keys):
         hit = store.get(key, shapes[i]) if store is not None else None
