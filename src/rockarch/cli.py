@@ -719,4 +719,20 @@ def design(
         typer.echo(f"wrote {report}")
 
 
+@app.command("reproduce")
+@guarded
+def reproduce_command(
+    out: Path = typer.Option(..., help="Folder to write (created if needed)."),
+    quick: bool = typer.Option(False, "--quick", help="Coarse grids (about 10 s)."),
+) -> None:
+    """Regenerate the paper's Tables 1–2, Figs. 15 and 19 and the Sect. 9 example into OUT
+    with an index.html showing paper vs computed side by side."""
+    from rockarch.reproduce import reproduce
+
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"{out}: exists and is not a folder")
+    reproduce(out, quick=quick, log=lambda msg: typer.echo(msg, err=True))
+    typer.echo(str(out / "index.html"))
+
+
 __all__ = ["app", "fail"]
