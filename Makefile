@@ -28,6 +28,7 @@ bench: $(VENV)/.installed
 	$(BIN)/python benchmarks/block_oas.py
 	$(BIN)/python benchmarks/arch_lp.py
 	$(BIN)/python benchmarks/fourhinge.py
+	$(BIN)/python benchmarks/sweep.py
 
 clean:
 	rm -rf $(VENV) $(OUT) build src/*.egg-info
