@@ -1,0 +1,106 @@
+"""Benchmark: the MDOF model (issue 5) against its targets and a plain reference.
+
+Run:  .venv/bin/python benchmarks/mdof.py          (≈ 2–3 min on 2 cores)
+
+1. one simulation of a 20-voussoir catenary arch (l = 10 m, f = 3 m, d = 0.25 m) on the first
+   5 s of El Centro 1940 (PGA = ratio·ap,min, ratio 1.0…2.0, no free time), with history:
+   median per simulation (target ≤ 50 ms);
+2. a 50 × 50 MDOF OAS of that arch under a sine pulse (T = 1 s) with boundary bisection,
+   wall time on all cores (target ≤ 3 min);
+3. cost scaling with N = 10, 20, 40, 80 voussoirs (the case of 1);
+4. reference: the single block (p = 2, alpha = 0.2) on the same 5 s by the MDOF kernel and
+   by scipy's solve_ivp on Housner's equation with events (benchmarks/block_oas.py), same
+   runs, same verdicts.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from rockarch import mdof, motion, spectra
+from rockarch.arch import catenary
+from rockarch.block import housner_restitution
+from rockarch.records import el_centro
+
+sys.path.insert(0, str(Path(__file__).parent))
+from block_oas import reference_simulation  # noqa: E402
+
+
+def first_seconds(rec, seconds):
+    keep = rec.t <= seconds
+    return motion.GroundMotion(rec.t[keep], rec.a[keep], f"{rec.name} (first {seconds:g} s)")
+
+
+def time_runs(assembly, rec, ratios, reps=3):
+    times, steps, over = [], [], []
+    for r in ratios:
+        m = rec.scaled(r * assembly.ap_min / rec.pga)
+        best = math.inf
+        for _ in range(reps):
+            t0 = time.perf_counter()
+            res = mdof.simulate(assembly, m, t_free=0.0)
+            best = min(best, time.perf_counter() - t0)
+        times.append(best)
+        steps.append(res.steps)
+        over.append(res.overturned)
+    return np.array(times), np.array(steps), np.array(over)
+
+
+def main() -> None:
+    rec = first_seconds(el_centro(), 5.0)
+    arch = catenary(10.0, 3.0, 0.25)
+    ratios = np.linspace(1.0, 2.0, 11)
+    a20 = mdof.arch_assembly(arch, 20)
+    mdof.simulate(a20, rec.scaled(0.5), t_free=0.0)  # JIT / cache load
+    t, st, ov = time_runs(a20, rec, ratios)
+    print(f"{a20.name}: p = {a20.p_ref:.4f} 1/s, ap,min = {a20.ap_min:.4f} m/s²")
+    print(f"1. one simulation, 5 s of El Centro, ratio 1.0…2.0 (with history, best of 3): "
+          f"median {1e3 * np.median(t):.1f} ms, max {1e3 * t.max():.1f} ms "
+          f"(target <= 50 ms median); {ov.sum()}/{ov.size} collapse; "
+          f"{1e6 * np.sum(t) / np.sum(st):.1f} µs per step")
+
+    sysm = mdof.MDOFSystem(mdof.arch_assembly(catenary(1.0, 0.3, 0.025), 20))
+    p = np.linspace(0.5, 10.0, 50)
+    rr = np.linspace(1.0, 8.0, 50)
+    t0 = time.perf_counter()
+    ds = spectra.compute_oas(sysm, motion.sine(1.0, 1.0), p, rr, progress=False)
+    wall = time.perf_counter() - t0
+    print(f"2. 50 x 50 MDOF OAS (f/l = 0.3, d/l = 0.025, N = 20), sine T = 1 s, + bisection: "
+          f"{wall:.1f} s wall (target <= 180 s); {int(ds.overturned.sum())} of 2500 cells "
+          "collapse")
+
+    print("3. scaling with N (case 1, median over the ratios):")
+    print("| N | median per simulation [ms] | µs per step | µs per step and joint |")
+    print("|---|---|---|---|")
+    for n in (10, 20, 40, 80):
+        an = mdof.arch_assembly(arch, n)
+        t, st, _ = time_runs(an, rec, ratios, reps=2)
+        us = 1e6 * np.sum(t) / np.sum(st)
+        print(f"| {n} | {1e3 * np.median(t):.1f} | {us:.1f} | {us / (n + 1):.2f} |")
+
+    blk = mdof.block_from_p_alpha(2.0, 0.2)
+    r = housner_restitution(0.2)
+    ratios_b = np.linspace(1.5, 4.0, 6)
+    t_m, t_r, agree = [], [], 0
+    for ratio in ratios_b:
+        m = rec.scaled(ratio * blk.ap_min / rec.pga)
+        t0 = time.perf_counter()
+        res = mdof.simulate(blk, m, t_free=0.0)
+        t_m.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        ov_ref, _ = reference_simulation(m.t, m.a / 9.81, 2.0, 0.2, r, t_free=0.0)
+        t_r.append(time.perf_counter() - t0)
+        agree += ov_ref == res.overturned
+    t_m, t_r = np.median(t_m), np.median(t_r)
+    print(f"4. single block (p = 2, alpha = 0.2), 5 s of El Centro, {ratios_b.size} ratios: "
+          f"MDOF kernel {1e3 * t_m:.2f} ms, solve_ivp reference {1e3 * t_r:.1f} ms "
+          f"(median): {t_r / t_m:.0f}x; same verdict in {agree}/{ratios_b.size}")
+
+
+if __name__ == "__main__":
+    main()
