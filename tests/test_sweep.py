@@ -82,6 +82,15 @@ def test_store_reuses_chunks_and_detects_corruption(block, shape, reference, tmp
     assert not list((tmp_path / "chunks").rglob("*.part"))  # no temporary files left
 
 
+def test_serial_thread_limit_does_not_stick(block, shape):
+    import numba
+
+    before = numba.get_num_threads()
+    with sweep.Executor("serial", workers=1) as ex:
+        sweep.run_chunks(block, shape, [(P[:2], R[:2])], executor=ex)
+    assert numba.get_num_threads() == before
+
+
 def test_cache_key_covers_every_input(block, shape):
     key = sweep.chunk_key(block, shape, P[:2], R)
     assert key == sweep.chunk_key(spectra.BlockSystem(alpha=0.2, t_free=3.0), shape, P[:2], R)

@@ -21,6 +21,7 @@ gives bit-identical maps.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import enum
 import hashlib
@@ -185,7 +186,11 @@ class Store:
             data = path.read_bytes()
         except FileNotFoundError:
             return None
+        except OSError as exc:  # a directory or an unreadable file where a chunk belongs
+            data = exc
         try:
+            if isinstance(data, OSError):
+                raise data
             if not data.startswith(_MAGIC):
                 raise ValueError("bad header")
             digest = data[len(_MAGIC):len(_MAGIC) + 64]
@@ -200,7 +205,8 @@ class Store:
         except Exception as exc:  # noqa: BLE001 - any damage means: recompute
             self.corrupt += 1
             self.report(f"store chunk {path} is corrupt ({exc}); recomputing it")
-            path.unlink(missing_ok=True)
+            with contextlib.suppress(OSError):
+                path.unlink(missing_ok=True)
             return None
         self.reused += 1
         return over, resp
@@ -328,11 +334,17 @@ def run_chunk(system, motion, p, ratio, threads: int | None = None):
 
     ``threads`` limits the numba threads of this call (thread-local; None: unchanged).
     """
-    if threads is not None:
+    if threads is None:
+        over, resp = system.run(motion, p, ratio)
+    else:
         import numba
 
+        before = numba.get_num_threads()
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-    over, resp = system.run(motion, p, ratio)
+        try:
+            over, resp = system.run(motion, p, ratio)
+        finally:
+            numba.set_num_threads(before)
     return np.asarray(over, dtype=bool), np.asarray(resp, dtype=np.float64)
 
 
