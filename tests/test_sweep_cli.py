@@ -93,3 +93,23 @@ def test_unreachable_scheduler_is_one_line_within_10_s(tmp_path):
             assert proc.returncode == 2 and out == ""
             assert err.startswith(f"error: cannot reach a Dask scheduler at tcp://127.0.0.1:"
                                   f"{port}") and len(err.strip().splitlines()) == 1
+
+
+def test_site_oas_resumes_from_the_store_and_matches_without_it(tmp_path):
+    from rockarch.records import bundled_record_path
+
+    args = ["site-oas", "--records", str(bundled_record_path(180)),
+            str(bundled_record_path(270)), "--p-min", "1", "--p-max", "4", "--p-steps", "4",
+            "--ratio-steps", "11", "--t-free", "3", "--json"]
+    store = tmp_path / "store"
+    first, err = _run([*args, "--out", str(tmp_path / "a.nc"), "--store", str(store)])
+    n = len(list(store.rglob("*.npz")))
+    assert err == "" and n >= 8  # chunks of both records
+    again, err = _run([*args, "--out", str(tmp_path / "b.nc"), "--store", str(store)])
+    assert err.strip() == f"store {store}: {n} chunks reused, 0 computed"
+    plain, _ = _run([*args, "--out", str(tmp_path / "c.nc"), "--no-store", "--workers", "2"])
+    for js in (again, plain):
+        assert {k: v for k, v in js.items() if k != "out"} == \
+            {k: v for k, v in first.items() if k != "out"}
+    with pytest.raises(AssertionError):
+        _run([*args, "--out", str(tmp_path / "d.nc"), "--workers", "0"])

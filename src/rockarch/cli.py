@@ -153,6 +153,16 @@ def _p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: in
     return np.round(np.linspace(p_min, p_max, p_steps), 12)
 
 
+# sweep options (rockarch.sweep; docs/sweeps.md), shared by oas and site-oas
+WORKERS_OPT = typer.Option(None, help="Local worker processes (default: every core; small "
+                           "sweeps run in-process).")
+SCHEDULER_OPT = typer.Option(None, help="Run on a running Dask scheduler tcp://HOST:PORT.")
+DASK_WORKERS_OPT = typer.Option(None, help="Start a local Dask cluster of N workers.")
+STORE_OPT = typer.Option(None, help="Resumable store of finished chunks (default: "
+                         "$ROCKARCH_CACHE or ~/.cache/rockarch).")
+NO_STORE_OPT = typer.Option(False, "--no-store", help="Keep no store (always recompute).")
+
+
 @app.command()
 @guarded
 def oas(
@@ -191,15 +201,8 @@ def oas(
     plot: Path = typer.Option(None, help="Write a PNG plot of the OAS."),
     json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
     progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
-    workers: int = typer.Option(None, help="Local worker processes (default: every core; "
-                                "small sweeps run in-process)."),
-    scheduler: str = typer.Option(None, help="Run on a running Dask scheduler "
-                                  "tcp://HOST:PORT."),
-    dask_workers: int = typer.Option(None, help="Start a local Dask cluster of N workers."),
-    store: Path = typer.Option(None, help="Resumable store of finished chunks (default: "
-                               "$ROCKARCH_CACHE or ~/.cache/rockarch)."),
-    no_store: bool = typer.Option(False, "--no-store", help="Keep no store (always "
-                                  "recompute)."),
+    workers: int = WORKERS_OPT, scheduler: str = SCHEDULER_OPT,
+    dask_workers: int = DASK_WORKERS_OPT, store: Path = STORE_OPT, no_store: bool = NO_STORE_OPT,
 ) -> None:
     """Overturning acceleration spectrum (OAS) over p × ap/ap,min for one ground motion.
 
@@ -224,21 +227,14 @@ def oas(
     for path in (out, plot):
         if path is not None and not path.resolve().parent.is_dir():
             raise ValueError(f"{path.parent}: directory does not exist")
-    from rockarch import sweep
+    from rockarch.sweep import open_sweep
 
-    chunk_store = sweep.store_for(store, no_store=no_store,
-                                  report=lambda msg: typer.echo(f"warning: {msg}", err=True))
-    executor = sweep.executor_for(workers=workers, scheduler=scheduler,
-                                  dask_workers=dask_workers, n_sims=ps.size * ratios.size)
-    try:
+    with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
+                    store_dir=store, no_store=no_store, n_sims=ps.size * ratios.size,
+                    echo=lambda msg: typer.echo(msg, err=True)) as (executor, chunk_store):
         ds = spectra.compute_oas(sysobj, shape_motion, ps, ratios, tol=tol,
                                  progress=progress and sys.stderr.isatty(),
                                  executor=executor, store=chunk_store)
-    finally:
-        if executor is not None:
-            executor.close()
-    if chunk_store is not None and (chunk_store.reused or chunk_store.corrupt):
-        typer.echo(chunk_store.summary(), err=True)
     if out is not None:
         spectra.save(ds, out)
     if plot is not None:
@@ -621,6 +617,8 @@ def site_oas_command(
     out: Path = typer.Option(..., help="NetCDF file to write."),
     plot: Path = typer.Option(None, help="PNG of the records' OAS boundaries and curves."),
     json_out: bool = typer.Option(False, "--json", help="Print one JSON object."),
+    workers: int = WORKERS_OPT, scheduler: str = SCHEDULER_OPT,
+    dask_workers: int = DASK_WORKERS_OPT, store: Path = STORE_OPT, no_store: bool = NO_STORE_OPT,
 ) -> None:
     """Site OAS: slender-block OAS of every record, their envelope and percentile curve."""
     from rockarch import site
@@ -634,8 +632,15 @@ def site_oas_command(
     if ratio_steps < 2 or not (0 <= ratio_min < ratio_max):
         raise ValueError("need --ratio-steps >= 2 and 0 <= --ratio-min < --ratio-max")
     ratios = np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
-    ds = site.site_oas(motions, ps, ratios, alpha=alpha, percentile=percentile, tol=tol,
-                       hashes=hashes, t_free=t_free, progress=sys.stderr.isatty())
+    from rockarch.sweep import open_sweep
+
+    with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
+                    store_dir=store, no_store=no_store,
+                    n_sims=ps.size * ratios.size * len(motions),
+                    echo=lambda msg: typer.echo(msg, err=True)) as (executor, chunk_store):
+        ds = site.site_oas(motions, ps, ratios, alpha=alpha, percentile=percentile, tol=tol,
+                           hashes=hashes, t_free=t_free, progress=sys.stderr.isatty(),
+                           executor=executor, store=chunk_store)
     site.save(ds, out)
     if plot is not None:
         import matplotlib.pyplot as plt

@@ -67,25 +67,37 @@ def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], l
 
 def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              percentile: float = 50.0, tol: float = spectra.TOL, hashes=None,
-             progress: bool = True, **system_kw) -> xr.Dataset:
+             progress: bool = True, executor=None, store=None,
+             **system_kw) -> xr.Dataset:
     """Block OAS of every record and the site's envelope and percentile curves (Sect. 9).
 
     Returns a Dataset with ``overturned`` (record, p, ratio), ``boundary`` (record, p),
     ``envelope`` (p), ``characteristic`` (p) (the ``percentile`` of the boundaries; a lower
     percentile is more conservative), and the records' names, PGAs and hashes.
+    ``executor`` and ``store`` are those of :func:`rockarch.spectra.compute_oas` (one
+    executor serves every record: a pool or cluster starts once).
     """
     if not motions:
         raise ValueError("a site OAS needs at least one record")
     if not 0.0 <= float(percentile) <= 100.0:
         raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
     system = spectra.BlockSystem(alpha=alpha, **system_kw)
-    maps = []
-    for k, m in enumerate(motions):
-        if progress:
-            from tqdm.auto import tqdm
+    from rockarch import sweep
 
-            tqdm.write(f"record {k + 1}/{len(motions)}: {m.name}")
-        maps.append(spectra.compute_oas(system, m, p, ratio, tol=tol, progress=progress))
+    executor, owned = sweep.as_executor(executor)
+    store = sweep.as_store(store)
+    maps = []
+    try:
+        for k, m in enumerate(motions):
+            if progress:
+                from tqdm.auto import tqdm
+
+                tqdm.write(f"record {k + 1}/{len(motions)}: {m.name}")
+            maps.append(spectra.compute_oas(system, m, p, ratio, tol=tol, progress=progress,
+                                            executor=executor, store=store))
+    finally:
+        if owned:
+            executor.close()
     b = np.stack([ds["boundary"].values for ds in maps])
     inf = np.where(np.isfinite(b), b, np.inf)
     env = inf.min(axis=0)

@@ -630,3 +630,24 @@ def store_for(store_dir=None, *, no_store: bool = False,
             raise ValueError("give either --store DIR or --no-store, not both")
         return None
     return Store(store_dir, report=report)
+
+
+@contextlib.contextmanager
+def open_sweep(*, workers: int | None = None, scheduler: str | None = None,
+               dask_workers: int | None = None, store_dir=None, no_store: bool = False,
+               n_sims: int | None = None, echo: Callable[[str], None] | None = None):
+    """``with open_sweep(...) as (executor, store):`` the executor and store that the
+    command-line options ask for (:func:`executor_for`, :func:`store_for`); the executor is
+    closed on exit. ``echo`` (e.g. a line on stderr) gets corrupt-chunk warnings and, after
+    a successful sweep that reused anything, the store's summary."""
+    report = None if echo is None else (lambda msg: echo(f"warning: {msg}"))
+    store = store_for(store_dir, no_store=no_store, report=report)
+    executor = executor_for(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
+                            n_sims=n_sims)
+    try:
+        yield executor, store
+    finally:
+        if executor is not None:
+            executor.close()
+    if echo is not None and store is not None and (store.reused or store.corrupt):
+        echo(store.summary())
