@@ -728,10 +728,10 @@ def design(
 @guarded
 def reproduce_command(
     out: Path = typer.Option(..., help="Folder to write (created if needed)."),
-    quick: bool = typer.Option(False, "--quick", help="Coarse grids (about 10 s)."),
+    quick: bool = typer.Option(False, "--quick", help="Coarse grids (about a minute)."),
 ) -> None:
-    """Regenerate the paper's Tables 1–2, Figs. 15 and 19 and the Sect. 9 example into OUT
-    with an index.html showing paper vs computed side by side."""
+    """Regenerate the paper's Tables 1–2, Figs. 15, 16, 17, 19 and the Sect. 9 example into
+    OUT with an index.html showing paper vs computed side by side."""
     from rockarch.reproduce import reproduce
 
     if out.exists() and not out.is_dir():

@@ -162,9 +162,87 @@ def equivalence_rows(n_p: int = 19, thick=(0.05, 0.025, 0.0125, 0.005, 0.0025)) 
     return rows
 
 
-def fig19(path, rep=None, n_p: int = 37, extra=None) -> None:
-    """Fig. 19: OAS of the Sect. 8 arch (four-hinge; ``extra`` adds e.g. the MDOF model as
-    a (label, system) pair) and of the blocks of both replacement catenaries."""
+def _compare(ref, other):
+    """(share of p where `other` is at or below `ref` (safe side), mean relative gap)."""
+    r = np.where(np.isfinite(ref), ref, np.inf)
+    o = np.where(np.isfinite(other), other, np.inf)
+    both = np.isfinite(r) & np.isfinite(o)
+    safe = float(np.mean(o <= r * (1 + 2e-3)))
+    rel = float(np.nanmean((o[both] - r[both]) / r[both])) if both.any() else math.nan
+    return safe, rel
+
+
+#: Geometries of Figs. 16–17 (the paper does not list them): catenaries at d/l = 0.025.
+MDOF_GEOMETRIES = ((0.2, 0.025), (0.3, 0.025), (0.4, 0.025))
+
+
+def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
+             tol: float = 1e-3) -> list[dict]:
+    """Hypotheses 2 and 3 (Figs. 16, 17): the MDOF catenary arch against its critical
+    optimal four-hinge mechanism and against the block with the same p and ap,min.
+
+    Every curve is on the axes of the continuous arch's optimal four-hinge mechanism (its p
+    at the arch's size, ap / its ap,min). Writes hypothesis2.png and hypothesis3.png.
+    """
+    import matplotlib.pyplot as plt
+
+    from rockarch import mdof
+    from rockarch.plot import save_figure
+
+    out = Path(out)
+    p = np.linspace(0.5, 10.0, n_p)
+    ratio = np.linspace(1.0, 8.0, n_ratio)
+    figs = {h: plt.subplots(3, 3, figsize=(13, 11), sharex=True, sharey=True) for h in (2, 3)}
+    rows = []
+    for j, (rise, d) in enumerate(MDOF_GEOMETRIES):
+        arch = catenary(1.0, rise, d)
+        fh = fourhinge_mechanism(arch)
+        asm = mdof.arch_assembly(arch, blocks)
+        sys_m = mdof.MDOFSystem(asm, ap_min=fh.ap_min, p_ref=fh.p)
+        sys_f = spectra.MechanismSystem(fh)
+        sys_b = spectra.BlockSystem(alpha=math.atan(fh.ap_min / fh.g))
+        for i, sig in enumerate(SIGNALS):
+            m = motion.pulse(sig, 1.0, 1.0)
+            bm, bf, bb = (spectra.compute_oas(s, m, p, ratio, tol=tol,
+                                              progress=False).boundary.values
+                          for s in (sys_m, sys_f, sys_b))
+            pp, rr = np.meshgrid(p, [1.5], indexing="ij")
+            nopen = int(mdof.simulate_batch(asm, m, pp, rr, ap_min=fh.ap_min,
+                                            p_ref=fh.p).open_joints_max.max())
+            s2, r2 = _compare(bm, bf)
+            s3, r3 = _compare(bm, bb)
+            rows.append({"signal": sig, "f/l": rise, "d/l": d,
+                         "ap_min_ratio": asm.ap_min / fh.ap_min, "fourhinge_safe": s2,
+                         "fourhinge_rel": r2, "block_safe": s3, "block_rel": r3,
+                         "open_joints_max": nopen})
+            for h, other, lab in ((2, bf, "critical optimal four-hinge"),
+                                  (3, bb, "block, same p and ap,min")):
+                ax = figs[h][1][i, j]
+                ax.plot(p, bm, color="tab:red", lw=1.8, label=f"MDOF arch, N = {blocks}")
+                ax.plot(p, other, "k--", lw=1.5, label=lab)
+                ax.set_title(f"{sig}, T = 1 s, catenary f/l = {rise}, d/l = {d}", fontsize=9)
+                if i == 2:
+                    ax.set_xlabel("p [1/s] (optimal four-hinge mechanism)")
+                if j == 0:
+                    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
+                ax.set_ylim(1, 8)
+                ax.grid(alpha=0.3)
+    for h, title in ((2, "Hypothesis 2 (paper Fig. 16): MDOF catenary arch vs its critical "
+                      "optimal four-hinge mechanism"),
+                     (3, "Hypothesis 3 (paper Fig. 17): MDOF catenary arch vs the block with "
+                      "the same p and ap,min")):
+        fig, axes = figs[h]
+        axes[0, 0].legend(fontsize=8)
+        fig.suptitle(title, fontsize=11)
+        fig.tight_layout()
+        save_figure(fig, out / f"hypothesis{h}.png")
+    return rows
+
+
+def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
+    """Fig. 19: OAS of the Sect. 8 arch (four-hinge mechanism and, unless ``mdof_blocks`` is
+    None, the MDOF arch of that many voussoirs) and of the blocks of both replacement
+    catenaries (each block on its own p and ap,min)."""
     import matplotlib.pyplot as plt
 
     from rockarch.plot import save_figure
@@ -173,10 +251,14 @@ def fig19(path, rep=None, n_p: int = 37, extra=None) -> None:
     rep = rep if rep is not None else replacement(arch)
     p = np.linspace(1.0, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, 57)
-    systems = [("circular arch, four-hinge mechanism",
-                spectra.MechanismSystem(fourhinge_mechanism(arch)), "k-")]
-    if extra is not None:
-        systems.append((extra[0], extra[1], "g-"))
+    fh = fourhinge_mechanism(arch)
+    systems = [("circular arch, four-hinge mechanism", spectra.MechanismSystem(fh), "k-")]
+    if mdof_blocks is not None:
+        from rockarch import mdof
+
+        systems.append((f"circular arch, MDOF N = {mdof_blocks}",
+                        mdof.MDOFSystem(mdof.arch_assembly(arch, mdof_blocks), ap_min=fh.ap_min,
+                                        p_ref=fh.p), "r-"))
     for r, style in ((rep.equivalent, "b--"), (rep.lower_bound, "b:")):
         systems.append((f"block of the {r.rule} replacement",
                         spectra.BlockSystem(alpha=math.atan(r.ap_min / G)), style))

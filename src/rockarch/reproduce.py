@@ -60,8 +60,8 @@ def _table2_html(t2: dict) -> str:
 def reproduce(out, *, quick: bool = False,
               extra_sections: list[Callable[[Path, bool], str]] | None = None,
               log: Callable[[str], None] = print) -> Path:
-    """Write Table 1, Sect. 8, Table 2, Figs. 15 and 19, the Sect. 9 design example (and
-    ``extra_sections``, e.g. the MDOF Figs. 16–17) into ``out`` with an index.html."""
+    """Write Table 1, Sect. 8, Table 2, Figs. 15, 16, 17 and 19, the Sect. 9 design example
+    (and ``extra_sections``) into ``out`` with an index.html."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
@@ -96,10 +96,25 @@ def reproduce(out, *, quick: bool = False,
         ["signal", "d/l", "impact e", "max rel. deviation", "mean", "block on the safe side"],
         [[r["signal"], r["d/l"], f"{r['e']:.3f}", f"{r['max_dev']:.4f}",
           f"{r['mean_dev']:+.4f}", f"{100 * r['block_safe']:.0f} %"] for r in eq]))
+    log("Figs. 16–17 (MDOF) …")
+    blocks = 10 if quick else 20
+    rows23 = paper.fig16_17(out, n_p=6 if quick else 30, blocks=blocks,
+                            n_ratio=15 if quick else 57, tol=2e-2 if quick else 1e-3)
+    parts.append(
+        f"<h2>Figs. 16 and 17 (Hypotheses 2 and 3), MDOF arches with N = {blocks}</h2>"
+        "<img src='hypothesis2.png' width='100%'><img src='hypothesis3.png' width='100%'>"
+        + _table(["signal", "f/l", "d/l", "ap,min(N)/ap,min(opt)",
+                  "four-hinge on the safe side", "four-hinge vs MDOF (mean rel.)",
+                  "block on the safe side", "block vs MDOF (mean rel.)", "open joints (max)"],
+                 [[r["signal"], r["f/l"], r["d/l"], f"{r['ap_min_ratio']:.3f}",
+                   f"{100 * r['fourhinge_safe']:.0f} %", f"{r['fourhinge_rel']:+.3f}",
+                   f"{100 * r['block_safe']:.0f} %", f"{r['block_rel']:+.3f}",
+                   r["open_joints_max"]] for r in rows23]))
     for section in extra_sections or []:
         parts.append(section(out, quick))
     log("Fig. 19 …")
-    paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37)
+    paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
+                mdof_blocks=blocks)
     parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>")
     log("Sect. 9 …")
     s9 = paper.sect9(out, n_p=40 if quick else 100)
