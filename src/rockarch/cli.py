@@ -15,12 +15,14 @@ import typer
 from rockarch._cli_util import fail, guarded, print_json
 from rockarch._validate import positive
 
+# rich_markup_mode=None: help texts show units such as "[m/s²]" literally (not as markup)
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
+    rich_markup_mode=None,
     help="Seismic overturning assessment of rocking blocks and masonry arches.",
 )
-simulate_app = typer.Typer(no_args_is_help=True,
+simulate_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                            help="Simulate one structure on one ground motion.")
 app.add_typer(simulate_app, name="simulate")
 
