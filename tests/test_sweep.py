@@ -186,14 +186,34 @@ def test_silent_scheduler_fails_fast(monkeypatch):
 
 
 def test_dask_local_cluster_is_bit_identical(block, reference):
-    """Two single-threaded Dask worker processes on loopback; the El Centro record too."""
+    """The test's own LocalCluster (2 single-threaded worker processes on loopback), reached
+    by its address like any running cluster; the El Centro record too."""
+    import logging
+
+    from distributed import LocalCluster
+
     rec = el_centro()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # distributed's own start-up notices
-        with sweep.Executor(dask_workers=2) as ex:
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                          host="127.0.0.1", dashboard_address=None,
+                          silence_logs=logging.ERROR) as cluster, \
+                sweep.Executor(scheduler=cluster.scheduler_address) as ex:
             ds = spectra.compute_oas(block, mo.pulse("sine", 1.0, 0.6), P, R, progress=False,
                                      chunks=5, executor=ex)
             assert ex.n_workers == 2
             ds_rec = spectra.compute_oas(block, rec, P[::3], R, progress=False, executor=ex)
     _same_maps(reference, ds)
     _same_maps(spectra.compute_oas(block, rec, P[::3], R, progress=False), ds_rec)
+
+
+def test_dask_workers_option_starts_and_stops_a_cluster(block, shape, reference):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ex = sweep.Executor(dask_workers=1)
+        with ex:
+            ds = spectra.compute_oas(block, shape, P, R, progress=False, chunks=5, executor=ex)
+            cluster = ex._cluster
+            assert cluster is not None and ex.n_workers == 1
+    _same_maps(reference, ds)
+    assert ex._cluster is None and cluster.status.name == "closed"
