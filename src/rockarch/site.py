@@ -136,13 +136,7 @@ def save(ds: xr.Dataset, path) -> None:
 
 def load(path) -> xr.Dataset:
     """Read a site OAS file, checking its kind and version."""
-    path = Path(path)
-    if not path.exists():
-        raise ValueError(f"{path}: no such file")
-    try:
-        ds = xr.load_dataset(path)
-    except Exception as exc:  # noqa: BLE001 - any reader failure is a bad file for the user
-        raise ValueError(f"{path}: not a readable NetCDF file ({exc})") from None
+    ds = spectra.read_netcdf(path)
     kind = ds.attrs.get("kind")
     if kind != KIND:
         raise ValueError(f"{path}: not a rockarch site OAS file (kind = {kind!r}; make one "
@@ -151,7 +145,6 @@ def load(path) -> xr.Dataset:
     if version != FORMAT_VERSION:
         raise ValueError(f"{path}: site OAS format version {version}, this rockarch reads "
                          f"version {FORMAT_VERSION}: rebuild it with `rockarch site-oas`")
-    ds["overturned"] = ds["overturned"].astype(bool)
     return ds
 
 

@@ -245,8 +245,9 @@ def save(ds: xr.Dataset, path) -> None:
             tmp.unlink()
 
 
-def load(path) -> xr.Dataset:
-    """Read an OAS dataset written by :func:`save`."""
+def read_netcdf(path) -> xr.Dataset:
+    """Read a NetCDF file into memory; a missing or unreadable file is a ValueError. A
+    boolean ``overturned`` map (stored as bytes) comes back as bool."""
     from pathlib import Path
 
     path = Path(path)
@@ -256,7 +257,14 @@ def load(path) -> xr.Dataset:
         ds = xr.load_dataset(path)
     except Exception as exc:  # noqa: BLE001 - any reader failure is a bad file for the user
         raise ValueError(f"{path}: not a readable NetCDF file ({exc})") from None
+    if "overturned" in ds:
+        ds["overturned"] = ds["overturned"].astype(bool)
+    return ds
+
+
+def load(path) -> xr.Dataset:
+    """Read an OAS dataset written by :func:`save`."""
+    ds = read_netcdf(path)
     if "overturned" not in ds or "boundary" not in ds:
         raise ValueError(f"{path}: not an OAS file (no 'overturned'/'boundary' variables)")
-    ds["overturned"] = ds["overturned"].astype(bool)
     return ds
