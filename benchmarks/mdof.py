@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import mdof, motion, spectra
+from rockarch import mdof, motion, spectra, systems
 from rockarch.arch import catenary
 from rockarch.block import housner_restitution
 from rockarch.records import el_centro
@@ -64,7 +64,7 @@ def main() -> None:
           f"(target <= 50 ms median); {ov.sum()}/{ov.size} collapse; "
           f"{1e6 * np.sum(t) / np.sum(st):.1f} µs per step")
 
-    sysm = mdof.MDOFSystem(mdof.arch_assembly(catenary(1.0, 0.3, 0.025), 20))
+    sysm = systems.MDOFSystem(mdof.arch_assembly(catenary(1.0, 0.3, 0.025), 20))
     p = np.linspace(0.5, 10.0, 50)
     rr = np.linspace(1.0, 8.0, 50)
     t0 = time.perf_counter()

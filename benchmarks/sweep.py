@@ -27,7 +27,8 @@ import numpy as np
 from rockarch import sweep
 from rockarch.motion import GroundMotion
 from rockarch.records import el_centro
-from rockarch.spectra import BlockSystem, compute_oas
+from rockarch.spectra import compute_oas
+from rockarch.systems import BlockSystem
 
 
 def long_record(repeats: int) -> GroundMotion:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import motion, paper, spectra
+from rockarch import motion, paper, spectra, systems
 from rockarch.arch import analyse, circular
 from rockarch.block import RigidBlock, simulate
 from rockarch.plot import plot_oas, plot_response, save_figure
@@ -37,7 +37,7 @@ def main() -> None:
              f"Command: `python examples/demo.py --out {out} --n {args.n}`", ""]
 
     rec = el_centro()
-    system = spectra.BlockSystem(alpha=ALPHA)
+    system = systems.BlockSystem(alpha=ALPHA)
     p = np.linspace(0.5, 10.0, args.n)
     ratio = np.linspace(1.0, 5.0, args.n)
     t0 = time.perf_counter()
@@ -74,7 +74,7 @@ def main() -> None:
     mot = rec.scaled_to_pga(1.6 * blk.ap_min)
     resp = simulate(blk, mot)
     save_figure(plot_response(resp, mot), out / "block_elcentro.png")
-    s = resp.summary()
+    s = resp.to_dict()
     lines += ["## One time history", "",
               f"Block B = 0.25 m, H = 2.5 m (p = {blk.p:.3f} 1/s, alpha = {blk.alpha:.4f} rad,"
               f" ap,min = {blk.ap_min:.3f} m/s²), El Centro scaled to PGA = 1.6 ap,min: "

@@ -12,7 +12,7 @@ import numpy as np
 
 from rockarch import mdof, motion
 from rockarch.arch import catenary
-from rockarch.arch.dynamics import fourhinge_mechanism
+from rockarch.fourhinge_motion import fourhinge_mechanism
 
 
 def main() -> None:

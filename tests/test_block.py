@@ -28,7 +28,7 @@ def test_free_rocking_quarter_period_exact(alpha, frac):
     ~1e-7 s here (4th order: 16x smaller per halving, checked below)."""
     b = RigidBlock(2.0, alpha)
     res = simulate(b, None, theta0=frac * alpha, t_free=3.0)
-    assert res.impacts[0] == pytest.approx(free_quarter_period(2.0, alpha, frac * alpha),
+    assert res.impact_times[0] == pytest.approx(free_quarter_period(2.0, alpha, frac * alpha),
                                            abs=2e-7)
 
 
@@ -39,21 +39,21 @@ def test_free_rocking_period_linearised_for_slender_block():
     for frac in (0.1, 0.5, 0.9):
         res = simulate(b, None, theta0=frac * b.alpha, t_free=2.0)
         t_lin = math.acosh(1.0 / (1.0 - frac)) / b.p
-        assert res.impacts[0] == pytest.approx(t_lin, rel=1e-4)
+        assert res.impact_times[0] == pytest.approx(t_lin, rel=1e-4)
 
 
 def test_free_rocking_amplitude_decay_and_period_shrink():
     """Each half cycle the amplitude falls (r < 1) and so does the half period (Housner)."""
     b = RigidBlock(2.0, 0.2)
     res = simulate(b, None, theta0=0.8 * b.alpha, t_free=6.0)
-    gaps = np.diff(res.impacts)
+    gaps = np.diff(res.impact_times)
     assert np.all(np.diff(gaps) < 0)
 
 
 def test_rk4_converges_at_fourth_order():
     b = RigidBlock(2.0, 0.2)
     exact = free_quarter_period(2.0, 0.2, 0.1)
-    errs = [abs(simulate(b, None, theta0=0.1, t_free=1.0, h_factor=h).impacts[0] - exact)
+    errs = [abs(simulate(b, None, theta0=0.1, t_free=1.0, h_factor=h).impact_times[0] - exact)
             for h in (0.2, 0.1, 0.05)]
     # halving h divides the error by 2^4 = 16 (allow 10..22 for the pre-asymptotic range)
     assert 10 < errs[0] / errs[1] < 22 and 10 < errs[1] / errs[2] < 22
@@ -73,7 +73,7 @@ def test_velocity_ratio_at_every_impact(restitution):
 def test_restitution_zero_stops_at_first_impact():
     b = RigidBlock(2.0, 0.2, restitution=0.0)
     res = simulate(b, None, theta0=0.5 * b.alpha, t_free=5.0)
-    assert res.n_impacts == 1 and res.t_end == pytest.approx(res.impacts[0])
+    assert res.impacts == 1 and res.t_end == pytest.approx(res.impact_times[0])
 
 
 @pytest.mark.parametrize("motion", [mo.sine(1.0, 0.7), mo.square(1.0, 0.7),
@@ -81,21 +81,22 @@ def test_restitution_zero_stops_at_first_impact():
 def test_nothing_moves_below_ap_min_pulses(motion):
     b = RigidBlock(2.0, 0.15)
     res = simulate(b, motion.scaled(0.9999 * b.ap_min))
-    assert res.max_theta_over_alpha == 0.0 and res.n_impacts == 0 and not res.overturned
+    assert res.max_rotation_ratio == 0.0 and res.impacts == 0 and not res.overturned
     assert np.all(res.theta == 0.0)
 
 
 def test_nothing_moves_below_ap_min_record():
     rec = el_centro()
-    out = simulate_batch(rec, np.linspace(0.5, 10, 20), 0.9999, 0.1)
-    assert np.all(out.max_theta_over_alpha == 0.0) and not out.overturned.any()
+    out = simulate_batch(RigidBlock(1.0, 0.1), rec, np.linspace(0.5, 10, 20), 0.9999)
+    assert np.all(out.max_rotation_ratio == 0.0) and not out.overturned.any()
 
 
 @pytest.mark.parametrize("p", [1.0, 2.0, 4.0])
 def test_step_impulse_boundary_exact(p):
     """Engine vs the exact quadrature of the step impulse (tests/reference.py). t_free = 80 s
     lets the near-separatrix motion finish; agreement to 1e-6 is RK4 + event location."""
-    from rockarch.spectra import BlockSystem, compute_oas
+    from rockarch.spectra import compute_oas
+    from rockarch.systems import BlockSystem
 
     alpha, T = 0.2, 1.0
     ds = compute_oas(BlockSystem(alpha=alpha, t_free=80.0), mo.step(1.0, T), [p],
@@ -107,7 +108,8 @@ def test_step_impulse_boundary_linearised_closed_form():
     """Linearised slender block, step impulse of duration T (derivation in docs/block.md):
     overturning iff ap/ap,min ≥ 1/(1 − exp(−p·T)). The exact engine deviates by O(α²):
     below 1e-4 relative for α = 0.01, and 100x more for α = 0.1."""
-    from rockarch.spectra import BlockSystem, compute_oas
+    from rockarch.spectra import compute_oas
+    from rockarch.systems import BlockSystem
 
     ps = np.array([0.7, 1.5, 3.0])
     T = 0.8
@@ -129,7 +131,7 @@ def test_sign_symmetry(motion):
     a, c = simulate(b, m), simulate(b, m.scaled(-1.0))
     assert np.array_equal(a.t, c.t)
     assert np.array_equal(a.theta, -c.theta)
-    assert a.overturned == c.overturned and a.n_impacts == c.n_impacts
+    assert a.overturned == c.overturned and a.impacts == c.impacts
 
 
 def test_convergence_under_step_refinement_on_a_record():
@@ -142,7 +144,7 @@ def test_convergence_under_step_refinement_on_a_record():
     t = [r.t_overturn for r in res]
     assert abs(t[1] - t[2]) < 1e-5 and abs(t[0] - t[2]) < 1e-4
     safe = [simulate(b, rec.scaled(1.1 * b.ap_min / rec.pga), h_factor=h) for h in (0.05, 0.025)]
-    assert safe[0].max_theta_over_alpha == pytest.approx(safe[1].max_theta_over_alpha,
+    assert safe[0].max_rotation_ratio == pytest.approx(safe[1].max_rotation_ratio,
                                                          rel=1e-5)
 
 
@@ -150,13 +152,13 @@ def test_batch_matches_single_simulations():
     rec = el_centro()
     ps = np.array([1.0, 2.0, 3.5, 6.0])
     ratios = np.array([1.2, 1.6, 2.5, 1.05])
-    out = simulate_batch(rec, ps, ratios, 0.1)
+    out = simulate_batch(RigidBlock(1.0, 0.1), rec, ps, ratios)
     for i in range(ps.size):
         b = RigidBlock(ps[i], 0.1)
         single = simulate(b, rec.scaled(ratios[i] * b.ap_min / rec.pga))
         assert out.overturned[i] == single.overturned
-        assert out.impacts[i] == single.n_impacts
-        assert out.max_theta_over_alpha[i] == pytest.approx(single.max_theta_over_alpha,
+        assert out.impacts[i] == single.impacts
+        assert out.max_rotation_ratio[i] == pytest.approx(single.max_rotation_ratio,
                                                             rel=1e-12)
 
 
@@ -167,7 +169,7 @@ def test_chatter_is_settled_in_bounded_work():
     assert res.t_end < 1000.0  # came to rest
     # amplitude ratio per impact is r² in energy; reaching eps_rest = 1e-6 needs
     # ln(1e6) / (-2 ln r) ≈ 1.8e3 impacts for alpha = 0.05
-    assert res.n_impacts < 3000
+    assert res.impacts < 3000
 
 
 @pytest.mark.parametrize(
@@ -180,7 +182,8 @@ def test_chatter_is_settled_in_bounded_work():
         (lambda: RigidBlock.from_dimensions(-1.0, 2.0), "width B"),
         (lambda: simulate(RigidBlock(1.0, 0.1), None, theta0=0.2), "theta0"),
         (lambda: simulate(RigidBlock(1.0, 0.1), None, t_free=-1), "t_free"),
-        (lambda: simulate_batch(mo.sine(1, 1), [1.0, -1.0], 2.0, 0.1), "p must be"),
+        (lambda: simulate_batch(RigidBlock(1.0, 0.1), mo.sine(1, 1), [1.0, -1.0], 2.0),
+         "p must be"),
     ],
 )
 def test_bad_input(call, msg):

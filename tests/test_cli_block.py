@@ -47,12 +47,14 @@ def test_simulate_block_json_contract_and_plot(tmp_path):
     png = tmp_path / "s.png"
     out = _json(["simulate", "block", "--alpha", "0.15", "--p", "2", "--signal", "sine",
                  "--period", "1", "--ratio", "2", "--json", "--plot", str(png)])
-    assert set(out) == {"overturned", "t_overturn", "max_theta_over_alpha", "impacts"}
+    assert set(out) == {"overturned", "t_overturn", "max_theta_over_alpha", "max_rotation_ratio",
+                        "impacts"}
     assert out["overturned"] is True and 0 < out["t_overturn"] < 11
     assert png.exists()
     safe = _json(["simulate", "block", "--alpha", "0.15", "--p", "2", "--record", REC,
                   "--ratio", "0.99", "--json"])
     assert safe == {"overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
+                    "max_rotation_ratio": 0.0,
                     "impacts": 0}
 
 
@@ -63,7 +65,7 @@ def test_record_scaling_in_cli_matches_api():
                  "--ratio", "1.3", "--json"])
     b = RigidBlock(3.0, 0.1)
     rec = el_centro()
-    api = simulate(b, rec.scaled_to_pga(1.3 * b.ap_min)).summary()
+    api = simulate(b, rec.scaled_to_pga(1.3 * b.ap_min)).to_dict()
     assert out == json.loads(json.dumps(api))
 
 

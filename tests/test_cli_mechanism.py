@@ -37,7 +37,7 @@ def test_oas_other_mechanisms(extra):
 
 
 def test_simulate_fourhinge_frame_sdof(tmp_path):
-    keys = {"overturned", "t_overturn", "max_theta_over_alpha", "impacts"}
+    keys = {"overturned", "t_overturn", "max_theta_over_alpha", "max_rotation_ratio", "impacts"}
     png = tmp_path / "fh.png"
     out = _json(["simulate", "fourhinge", "--shape", "catenary", "--span", "10", "--rise",
                  "3", "--thickness", "0.25", "--signal", "sine", "--period", "1", "--ratio",
@@ -47,6 +47,7 @@ def test_simulate_fourhinge_frame_sdof(tmp_path):
                  "3", "--thickness", "0.25", "--blocks", "20", "--signal", "sine",
                  "--period", "1", "--ratio", "0.99", "--json"])
     assert out == {"overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
+                    "max_rotation_ratio": 0.0,
                    "impacts": 0}
     out = _json(["simulate", "frame", "--alpha", "0.15", "--p", "2", "--mass-ratio", "0.5",
                  "--signal", "square", "--period", "1", "--ratio", "1.5", "--json"])

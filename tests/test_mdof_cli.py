@@ -19,7 +19,8 @@ def _json(args):
 
 
 def test_simulate_mdof_contract():
-    keys = {"overturned", "t_overturn", "max_theta_over_alpha", "impacts", "open_joints_max"}
+    keys = {"overturned", "t_overturn", "max_theta_over_alpha", "max_rotation_ratio", "impacts",
+            "open_joints_max"}
     safe = _json(["simulate", "mdof", *ARCH, "--blocks", "20", "--signal", "sine",
                   "--period", "1", "--ratio", "0.9", "--json"])
     assert set(safe) == keys

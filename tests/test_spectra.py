@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from rockarch import motion as mo
-from rockarch import spectra
-from rockarch.block import simulate_batch
+from rockarch import spectra, systems
+from rockarch.block import RigidBlock, simulate_batch
 from rockarch.records import el_centro
 
 
@@ -50,10 +50,10 @@ def test_block_oas_map_equals_batch_runs_and_roundtrips(tmp_path):
     rec = el_centro()
     p = np.linspace(1.0, 6.0, 6)
     ratio = np.linspace(1.0, 3.0, 9)
-    system = spectra.BlockSystem(alpha=0.1)
+    system = systems.BlockSystem(alpha=0.1)
     ds = spectra.compute_oas(system, rec, p, ratio, progress=False)
     pp, rr = np.meshgrid(p, ratio, indexing="ij")
-    direct = simulate_batch(rec, pp, rr, 0.1)
+    direct = simulate_batch(RigidBlock(1.0, 0.1), rec, pp, rr)
     assert np.array_equal(ds.overturned.values, direct.overturned)
     # the refined boundary lies in (last safe grid value, first overturning grid value]
     for i in range(p.size):
@@ -62,7 +62,8 @@ def test_block_oas_map_equals_batch_runs_and_roundtrips(tmp_path):
             k = int(row.argmax())
             lo = ratio[k - 1] if k else 1.0
             assert lo < ds.boundary.values[i] <= ratio[k]
-            assert simulate_batch(rec, p[i], ds.boundary.values[i], 0.1).overturned
+            assert simulate_batch(RigidBlock(1.0, 0.1), rec, p[i],
+                                  ds.boundary.values[i]).overturned
     f = tmp_path / "oas.nc"
     spectra.save(ds, f)
     back = spectra.load(f)
@@ -77,7 +78,7 @@ def test_slender_block_oas_nearly_independent_of_alpha():
     """Paper Fig. 3a / physics note §2: for slender blocks the OAS hardly depends on alpha;
     sine pulse boundaries of alpha = 0.02 and 0.05 agree within 1 % (O(α²) effects)."""
     p = [1.5, 3.0, 6.0]
-    b = [spectra.compute_oas(spectra.BlockSystem(alpha=a), mo.sine(1, 1.0), p,
+    b = [spectra.compute_oas(systems.BlockSystem(alpha=a), mo.sine(1, 1.0), p,
                              np.linspace(1, 8, 29), progress=False).boundary.values
          for a in (0.02, 0.05)]
     assert np.allclose(b[0], b[1], rtol=1e-2)
@@ -90,7 +91,7 @@ def test_slender_block_oas_nearly_independent_of_alpha():
 )
 def test_bad_grids(p, ratio, msg):
     with pytest.raises(ValueError, match=msg):
-        spectra.compute_oas(spectra.BlockSystem(alpha=0.1), mo.sine(1, 1), p, ratio,
+        spectra.compute_oas(systems.BlockSystem(alpha=0.1), mo.sine(1, 1), p, ratio,
                             progress=False)
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rockarch import motion as mo
-from rockarch import spectra, sweep
+from rockarch import spectra, sweep, systems
 from rockarch.records import el_centro
 
 P = np.linspace(0.8, 4.0, 12)
@@ -19,7 +19,7 @@ R = np.linspace(1.0, 4.0, 13)
 
 @pytest.fixture(scope="module")
 def block():
-    return spectra.BlockSystem(alpha=0.2, t_free=3.0)
+    return systems.BlockSystem(alpha=0.2, t_free=3.0)
 
 
 @pytest.fixture(scope="module")
@@ -51,7 +51,7 @@ def test_every_local_mode_and_chunking_is_bit_identical(block, shape, reference)
         # a mechanism through the same pool (pickled system with tables)
         from rockarch.mechanism import rocking_frame
 
-        frame = spectra.MechanismSystem(rocking_frame(0.2, 1.0, 0.5, 9.81, None), t_free=3.0)
+        frame = systems.MechanismSystem(rocking_frame(0.2, 1.0, 0.5, 9.81, None), t_free=3.0)
         want = spectra.compute_oas(frame, shape, P[:4], R, progress=False)
         _same_maps(want, spectra.compute_oas(frame, shape, P[:4], R, progress=False,
                                              executor=ex))
@@ -93,7 +93,7 @@ def test_serial_thread_limit_does_not_stick(block, shape):
 
 def test_cache_key_covers_every_input(block, shape):
     key = sweep.chunk_key(block, shape, P[:2], R)
-    assert key == sweep.chunk_key(spectra.BlockSystem(alpha=0.2, t_free=3.0), shape, P[:2], R)
+    assert key == sweep.chunk_key(systems.BlockSystem(alpha=0.2, t_free=3.0), shape, P[:2], R)
     assert key == sweep.chunk_key(block, mo.pulse("sine", 1.0, 0.6), list(P[:2]), R)
     others = [
         sweep.chunk_key(dataclasses.replace(block, t_free=3.5), shape, P[:2], R),
@@ -117,12 +117,12 @@ def test_cache_key_depends_on_version(block, shape, monkeypatch):
 
 
 def test_mechanism_keys_are_reproducible(shape):
-    from rockarch.arch.dynamics import fourhinge_mechanism
     from rockarch.arch.geometry import make_arch
+    from rockarch.fourhinge_motion import fourhinge_mechanism
 
     def make():
         arch = make_arch("catenary", 1.0, 0.3, 0.05)
-        return spectra.MechanismSystem(fourhinge_mechanism(arch, None))
+        return systems.MechanismSystem(fourhinge_mechanism(arch, None))
 
     assert sweep.chunk_key(make(), shape, P, R) == sweep.chunk_key(make(), shape, P, R)
 
@@ -166,7 +166,7 @@ def test_unwritable_store(tmp_path):
     with pytest.raises(ValueError, match="store directory is not writable"):
         sweep.Store(blocker / "store")
     with pytest.raises(ValueError, match="executor must be"):
-        spectra.compute_oas(spectra.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.6), [1.0],
+        spectra.compute_oas(systems.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.6), [1.0],
                             [1.0, 2.0], executor=3)
 
 
@@ -180,7 +180,7 @@ def test_silent_scheduler_fails_fast(monkeypatch):
         t0 = time.monotonic()
         with pytest.raises(ValueError, match="cannot reach a Dask scheduler"), \
                 sweep.Executor(scheduler=f"tcp://127.0.0.1:{port}") as ex:
-            sweep.run_chunks(spectra.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.6),
+            sweep.run_chunks(systems.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.6),
                              [(P[:2], R[:2])], executor=ex)
         assert time.monotonic() - t0 < 8
 

@@ -13,15 +13,15 @@ import numpy as np
 import pytest
 
 from rockarch import motion as mo
-from rockarch import spectra, sweep
+from rockarch import spectra, sweep, systems
 
 SCRIPT = textwrap.dedent('''
     import dataclasses, json, sys, time
     import numpy as np
-    from rockarch import motion as mo, spectra, sweep
+    from rockarch import motion as mo, spectra, sweep, systems
 
     @dataclasses.dataclass(frozen=True)
-    class SlowBlock(spectra.BlockSystem):
+    class SlowBlock(systems.BlockSystem):
         """A block whose chunks take a while, so that the sweep can be interrupted."""
         def run(self, motion, p, ratio):
             time.sleep(0.08)
@@ -72,7 +72,7 @@ def test_interrupted_sweep_resumes(tmp_path, sig, mode):
     assert 4 <= finished < total
     assert not list(store.rglob("*.part"))
 
-    want = spectra.compute_oas(spectra.BlockSystem(alpha=0.2, t_free=3.0),
+    want = spectra.compute_oas(systems.BlockSystem(alpha=0.2, t_free=3.0),
                                mo.pulse("sine", 1.0, 0.6), np.linspace(0.8, 4.0, 16),
                                np.linspace(1.0, 4.0, 13), progress=False)
     with np.load(tmp_path / "out.npz") as got:
@@ -87,7 +87,7 @@ def test_interrupted_sweep_resumes(tmp_path, sig, mode):
 def test_store_counts_are_per_chunk(tmp_path):
     st = sweep.Store(tmp_path)
     shape = mo.pulse("sine", 1.0, 0.6)
-    blk = spectra.BlockSystem(alpha=0.2, t_free=3.0)
+    blk = systems.BlockSystem(alpha=0.2, t_free=3.0)
     spectra.compute_oas(blk, shape, [1.0, 2.0], [1.0, 3.0], progress=False, tol=0, chunks=2,
                         store=st)
     assert (st.computed, st.reused) == (2, 0) and len(_chunks(tmp_path)) == 2

@@ -1,9 +1,49 @@
 """rockarch: seismic overturning assessment of rocking blocks, columns and masonry arches.
 
-The data flow is ``ground motion -> structure -> simulation -> spectrum -> design check``:
-:mod:`rockarch.motion` / :mod:`rockarch.records` give a_g(t); :mod:`rockarch.block` is
-Housner's rigid block; :mod:`rockarch.spectra` computes overturning acceleration spectra
-(OAS); :mod:`rockarch.arch` is masonry arch statics (thrust line, four-hinge mechanism).
+The data flow is ``ground motion -> structure -> simulation -> spectrum -> design check``
+(docs/architecture.md). The front door::
+
+    import numpy as np
+    import rockarch as ra
+
+    sys_ = ra.system("block", alpha=0.1)        # "fourhinge", "mdof", "frame", "sdof"
+    m = ra.pulse("sine", period=0.5)            # or ra.read_record(path)
+    r = ra.simulate(sys_, m, p=2.0, ratio=2.0)  # -> ra.Response
+    r.overturned, r.t_overturn, r.max_rotation_ratio, r.impacts
+    ds = ra.oas(sys_, m, p=[1.0, 2.0], ratio=np.linspace(1, 5, 41))  # xarray.Dataset
+
+Units are SI (m, s, m/s², rad); sign conventions in docs/theory.md.
 """
 
 __version__ = "0.1.0"
+
+from rockarch.arch.geometry import make_arch  # noqa: E402
+from rockarch.constants import G  # noqa: E402
+from rockarch.motion import SIGNALS, GroundMotion  # noqa: E402
+from rockarch.motion import pulse as _pulse  # noqa: E402
+from rockarch.records import el_centro, read_record  # noqa: E402
+from rockarch.response import Batch, Response  # noqa: E402
+from rockarch.spectra import compute_oas as _compute_oas  # noqa: E402
+from rockarch.systems import KINDS, batch, simulate, system  # noqa: E402
+
+
+def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int = 3) -> GroundMotion:
+    """A pulse of the paper's family (Fig. 14; docs/theory.md Eq. 10): one of :data:`SIGNALS`,
+    peak ``ap`` [m/s²] (1 by default: OAS and simulate scale it), period [s]."""
+    return _pulse(signal, ap, period, cycles)
+
+
+def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
+        progress: bool = False, executor=None, store=None):
+    """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eq. 5).
+
+    The same computation as ``rockarch oas`` (which passes the same grids); see
+    :func:`rockarch.spectra.compute_oas` for the executor and store options.
+    """
+    kw = {} if tol is None else {"tol": tol}
+    return _compute_oas(sys_, motion, p, ratio, progress=progress, executor=executor,
+                        store=store, **kw)
+
+
+__all__ = ["G", "KINDS", "SIGNALS", "Batch", "GroundMotion", "Response", "__version__", "batch",
+           "el_centro", "make_arch", "oas", "pulse", "read_record", "simulate", "system"]

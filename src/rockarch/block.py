@@ -16,19 +16,12 @@ import numpy as np
 
 from rockarch import rocking_kernels as _k
 from rockarch._validate import in_range, positive
+from rockarch.constants import EPS_REST, T_FREE, G
+from rockarch.constants import SDOF_H_FACTOR as H_FACTOR
 from rockarch.motion import GroundMotion
+from rockarch.response import Batch, Response, run_batch
 
-G = 9.81
 _NO_TABLE = np.zeros((2, 3, 2))
-
-#: Default RK4 step bound h_max = H_FACTOR / p. The global error of RK4 is O((p·h)^4);
-#: tests/test_block.py checks that halving it changes overturning times by < 1e-6 s.
-H_FACTOR = 0.05
-#: Default settling threshold of the chatter criterion (fraction of alpha): a block whose
-#: next excursion cannot exceed EPS_REST·alpha while the ground cannot hold it is at rest.
-EPS_REST = 1e-6
-#: Default free-rocking time after the end of the ground motion [s].
-T_FREE = 10.0
 
 
 def housner_restitution(alpha: float) -> float:
@@ -113,38 +106,18 @@ class RigidBlock:
         return -self.p**2 * (np.sin(x) - np.asarray(a_g) / self.g * np.cos(x))
 
 
-@dataclass(frozen=True)
-class BlockResponse:
-    """Time history and summary of one block simulation.
+@dataclass(frozen=True, kw_only=True)
+class BlockResponse(Response):
+    """Time history of one block simulation (a :class:`~rockarch.response.Response`).
 
     ``t``, ``theta``, ``theta_dot`` are sampled at every integration step and event;
-    ``impacts`` holds the impact times. ``overturned`` and ``t_overturn`` say whether and
-    when |theta| reached alpha.
+    ``impact_times`` holds the impact times; ``max_rotation_ratio`` is max |theta|/alpha.
     """
 
     block: RigidBlock
-    motion_name: str
-    t: np.ndarray
     theta: np.ndarray
     theta_dot: np.ndarray
-    impacts: np.ndarray
-    overturned: bool
-    t_overturn: float | None
-    max_theta_over_alpha: float
-    t_end: float
-
-    @property
-    def n_impacts(self) -> int:
-        return int(self.impacts.size)
-
-    def summary(self) -> dict:
-        """The result as plain numbers (the CLI's ``--json`` output)."""
-        return {
-            "overturned": bool(self.overturned),
-            "t_overturn": self.t_overturn,
-            "max_theta_over_alpha": float(self.max_theta_over_alpha),
-            "impacts": self.n_impacts,
-        }
+    impact_times: np.ndarray
 
 
 def _check_settings(t_free: float, h_factor: float, eps_rest: float) -> None:
@@ -180,56 +153,32 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
         tk, ak, 1.0, model, block.p**2, block.p, prm, tab, amin, level, e, t_free, h_factor,
         eps_rest, th0, om0, cap)
     return BlockResponse(
-        block=block, motion_name=name, t=t, theta=th, theta_dot=om, impacts=imp,
-        overturned=status == 1, t_overturn=float(t_ov) if status == 1 else None,
-        max_theta_over_alpha=float(mx), t_end=float(t_end))
+        system=f"block p={block.p:g} alpha={block.alpha:g}", block=block, motion_name=name,
+        t=t, theta=th, theta_dot=om, impact_times=imp, impacts=int(imp.size),
+        overturned=bool(status == 1), t_overturn=float(t_ov) if status == 1 else None,
+        max_rotation_ratio=float(mx), t_end=float(t_end))
 
 
-@dataclass(frozen=True)
-class BatchResult:
-    """Summaries of many simulations of one motion (arrays aligned with the inputs)."""
+def simulate_batch(block: RigidBlock, motion: GroundMotion, p, ratio, *,
+                   t_free: float = T_FREE, h_factor: float = H_FACTOR,
+                   eps_rest: float = EPS_REST) -> Batch:
+    """Blocks of ``block``'s alpha at many frequency parameters p_i, on the motion scaled
+    to PGA = ratio_i·ap,min, in parallel (numba threads on every core).
 
-    overturned: np.ndarray
-    t_overturn: np.ndarray
-    max_theta_over_alpha: np.ndarray
-    impacts: np.ndarray
-
-
-def simulate_batch(motion: GroundMotion, p, ratio, alpha: float, *, g: float = G,
-                   restitution: float | None = None, t_free: float = T_FREE,
-                   h_factor: float = H_FACTOR, eps_rest: float = EPS_REST) -> BatchResult:
-    """Run many blocks (p_i, alpha) on the motion scaled to PGA = ratio_i·ap,min, in parallel.
-
-    ``p`` and ``ratio`` broadcast against each other. The motion's *shape* is used: it is
-    normalised to unit peak and scaled so that its peak |a_g| is ratio·g·tan(alpha)
-    (paper Sect. 1: the OAS axes). With the exact equation this makes g drop out.
-    Uses all cores (numba threads).
+    ``block.p`` is ignored (each run has its own p); ``p`` and ``ratio`` broadcast. The
+    motion's *shape* is used: normalised to unit peak and scaled so that its peak |a_g| is
+    ratio·g·tan(alpha) (the OAS axes, docs/theory.md Eq. 4); with the exact equation g
+    drops out.
     """
-    blk = RigidBlock(1.0, alpha, g, restitution)  # validates alpha, g, restitution
     _check_settings(t_free, h_factor, eps_rest)
-    p_arr, r_arr = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(ratio, float))
-    shape = p_arr.shape
-    p_flat = np.ascontiguousarray(p_arr.ravel())
-    r_flat = np.ascontiguousarray(r_arr.ravel())
-    if p_flat.size and not (np.all(np.isfinite(p_flat)) and np.all(p_flat > 0)):
-        raise ValueError("p must be a finite number > 0 for every block")
-    if r_flat.size and not (np.all(np.isfinite(r_flat)) and np.all(r_flat >= 0)):
-        raise ValueError("ratio ap/ap,min must be finite and >= 0")
     unit = motion.normalized()
     tk = np.ascontiguousarray(unit.t)
     ak = np.ascontiguousarray(unit.a)
-    scales = r_flat * math.tan(blk.alpha)
-    # a fixed permutation balances the threads (overturning runs end early)
-    perm = np.random.default_rng(0).permutation(p_flat.size)
-    model, prm, tab, amin, level, e = blk.kernel_args()
-    ps = p_flat[perm]
-    status, t_ov, mx, nimp = _k.run_batch(tk, ak, scales[perm], model, ps * ps, ps, prm, tab,
-                                          amin, level, e, float(t_free), float(h_factor),
-                                          float(eps_rest))
-    inv = np.empty_like(perm)
-    inv[perm] = np.arange(perm.size)
-    return BatchResult(
-        overturned=(status[inv] == 1).reshape(shape),
-        t_overturn=t_ov[inv].reshape(shape),
-        max_theta_over_alpha=mx[inv].reshape(shape),
-        impacts=nimp[inv].reshape(shape))
+    tan_a = math.tan(block.alpha)
+    model, prm, tab, amin, level, e = block.kernel_args()
+
+    def run(ps, rs):
+        return _k.run_batch(tk, ak, rs * tan_a, model, ps * ps, ps, prm, tab, amin, level,
+                            e, float(t_free), float(h_factor), float(eps_rest))
+
+    return run_batch(p, ratio, run)

@@ -16,7 +16,7 @@ from rockarch import site
 from rockarch._validate import positive
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
-from rockarch.block import G
+from rockarch.constants import G
 
 
 @dataclass(frozen=True)

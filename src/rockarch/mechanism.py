@@ -20,7 +20,7 @@ Collapse: q reaches delta (the neutral position; the criterion used for the bloc
 
 Concrete mechanisms: :func:`from_block` (Housner's block, tabulated exactly), :func:`generic`
 (given only p, delta, ap,min: the dimensionless equivalence form), :func:`rocking_frame`, and
-the four-hinge arch in :func:`rockarch.arch.dynamics.fourhinge_mechanism`.
+the four-hinge arch in :func:`rockarch.fourhinge_motion.fourhinge_mechanism`.
 """
 
 from __future__ import annotations
@@ -33,8 +33,11 @@ import numpy as np
 
 from rockarch import rocking_kernels as _k
 from rockarch._validate import in_range, positive
-from rockarch.block import EPS_REST, H_FACTOR, T_FREE, G, housner_restitution
+from rockarch.block import housner_restitution
+from rockarch.constants import EPS_REST, T_FREE, G
+from rockarch.constants import SDOF_H_FACTOR as H_FACTOR
 from rockarch.motion import GroundMotion
+from rockarch.response import Batch, Response, run_batch
 
 #: Intervals of the tables of A, V', Q over [0, delta]. Linear interpolation of smooth
 #: functions with 4000 intervals is accurate to ~(delta/4000)²·|f''|/8: ~1e-9 relative.
@@ -242,35 +245,20 @@ def rocking_frame(alpha: float, p_column: float, mass_ratio: float, g: float = G
                                                "gamma": gamma, "p_column": p_column})
 
 
-@dataclass(frozen=True)
-class MechanismResponse:
-    """Time history of one SDOF mechanism simulation.
+@dataclass(frozen=True, kw_only=True)
+class MechanismResponse(Response):
+    """Time history of one SDOF mechanism simulation (a :class:`~rockarch.response.Response`).
 
     ``u`` is signed: u > 0 on side + (opening for a_g > 0), u < 0 on side −; ``u_dot`` its
-    rate. ``max_u_over_delta`` is max |u|/delta of the active side.
+    rate; ``max_rotation_ratio`` is max |u|/delta of the active side; ``p`` the frequency
+    parameter of the simulated size.
     """
 
     mechanism: SDOFMechanism
     p: float
-    motion_name: str
-    t: np.ndarray
     u: np.ndarray
     u_dot: np.ndarray
-    impacts: np.ndarray
-    collapsed: bool
-    t_collapse: float | None
-    max_u_over_delta: float
-    t_end: float
-
-    @property
-    def n_impacts(self) -> int:
-        return int(self.impacts.size)
-
-    def summary(self) -> dict:
-        """Plain numbers, with the block's keys (max u/delta as max_theta_over_alpha)."""
-        return {"overturned": bool(self.collapsed), "t_overturn": self.t_collapse,
-                "max_theta_over_alpha": float(self.max_u_over_delta),
-                "impacts": self.n_impacts}
+    impact_times: np.ndarray
 
 
 def _settings(t_free, h_factor, eps_rest):
@@ -300,33 +288,26 @@ def simulate(mech: SDOFMechanism, motion: GroundMotion | None, *, p: float | Non
     status, t_c, mx, t_end, t, u, ud, imp = _k.run_recorded(
         tk, ak, 1.0, model, c, p, prm, tab, amin, level, e, t_free, h_factor, eps_rest, u0,
         float(u_dot0), cap)
-    return MechanismResponse(mech, p, name, t, u, ud, imp, status == 1,
-                             float(t_c) if status == 1 else None, float(mx), float(t_end))
+    return MechanismResponse(
+        system=mech.name, mechanism=mech, p=p, motion_name=name, t=t, u=u, u_dot=ud,
+        impact_times=imp, impacts=int(imp.size), overturned=bool(status == 1),
+        t_overturn=float(t_c) if status == 1 else None, max_rotation_ratio=float(mx),
+        t_end=float(t_end))
 
 
 def simulate_batch(mech: SDOFMechanism, motion: GroundMotion, p, ratio, *,
                    t_free: float = T_FREE, h_factor: float = H_FACTOR,
-                   eps_rest: float = EPS_REST):
+                   eps_rest: float = EPS_REST) -> Batch:
     """Many (p, ratio) pairs in parallel: the motion's shape scaled to a peak of
-    ratio·ap,min, the mechanism scaled to frequency parameter p. Returns
-    (collapsed, max_u_over_delta) arrays shaped like the broadcast inputs."""
+    ratio·ap,min, the mechanism scaled to frequency parameter p (docs/theory.md Eq. 4)."""
     _settings(t_free, h_factor, eps_rest)
-    p_arr, r_arr = np.broadcast_arrays(np.asarray(p, float), np.asarray(ratio, float))
-    shape = p_arr.shape
-    ps = np.ascontiguousarray(p_arr.ravel())
-    rs = np.ascontiguousarray(r_arr.ravel())
-    if ps.size and not (np.all(np.isfinite(ps)) and np.all(ps > 0)):
-        raise ValueError("p must be a finite number > 0 for every mechanism")
-    if rs.size and not (np.all(np.isfinite(rs)) and np.all(rs >= 0)):
-        raise ValueError("ratio ap/ap,min must be finite and >= 0")
     unit = motion.normalized()
+    tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)
     model, prm, tab, amin, level, e = mech.kernel_args()
-    perm = np.random.default_rng(0).permutation(ps.size)
-    pp = ps[perm]
-    status, _, mx, _ = _k.run_batch(
-        np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a),
-        rs[perm] * mech.ap_min / mech.g, model, (pp / mech.p) ** 2 * mech.g, pp, prm, tab,
-        amin, level, e, float(t_free), float(h_factor), float(eps_rest))
-    inv = np.empty_like(perm)
-    inv[perm] = np.arange(perm.size)
-    return (status[inv] == 1).reshape(shape), mx[inv].reshape(shape)
+
+    def run(pp, rs):
+        return _k.run_batch(tk, ak, rs * mech.ap_min / mech.g, model,
+                            (pp / mech.p) ** 2 * mech.g, pp, prm, tab, amin, level, e,
+                            float(t_free), float(h_factor), float(eps_rest))
+
+    return run_batch(p, ratio, run)

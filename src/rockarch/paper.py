@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import motion, spectra
+from rockarch import motion, spectra, systems
 from rockarch.arch import (
     analyse,
     catenary,
@@ -19,10 +19,10 @@ from rockarch.arch import (
     mass_per_horizontal_length,
     weighted_catenary,
 )
-from rockarch.arch.dynamics import fourhinge_mechanism
 from rockarch.arch.replacement import replacement
+from rockarch.constants import G
+from rockarch.fourhinge_motion import fourhinge_mechanism
 
-G = 9.81
 SIGNALS = ("sine", "square", "step")
 
 #: Table 1: (f/l, d/l) -> (c1, c2, c3, c3', c4) of the critical optimal four-hinge mechanism.
@@ -109,7 +109,7 @@ def fig15(path, n_p: int = 40, rises=(0.2, 0.3, 0.4), thick=(0.0125, 0.025, 0.05
     colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, 71)
-    block = spectra.BlockSystem(alpha=0.01)
+    block = systems.BlockSystem(alpha=0.01)
     fig, axes = plt.subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
                              sharey=True, squeeze=False)
     rows = []
@@ -121,7 +121,7 @@ def fig15(path, n_p: int = 40, rises=(0.2, 0.3, 0.4), thick=(0.0125, 0.025, 0.05
             slender = None
             for d, col in zip(thick, colors, strict=False):
                 mech = fourhinge_mechanism(catenary(1.0, rise, d))
-                b = _boundary(spectra.MechanismSystem(mech), sig, p, ratio)
+                b = _boundary(systems.MechanismSystem(mech), sig, p, ratio)
                 rhs = np.where(np.isfinite(b), b, np.inf)
                 slender = rhs if slender is None else slender
                 ax.plot(p, b, color=col, lw=1.5, label=f"arch d/l = {d}")
@@ -152,8 +152,8 @@ def equivalence_rows(n_p: int = 19, thick=(0.05, 0.025, 0.0125, 0.005, 0.0025)) 
     for sig in SIGNALS:
         for d in thick:
             mech = fourhinge_mechanism(catenary(1.0, 0.3, d))
-            blk = spectra.BlockSystem(alpha=math.atan(mech.ap_min / mech.g))
-            rel = (_boundary(spectra.MechanismSystem(mech), sig, p, ratio)
+            blk = systems.BlockSystem(alpha=math.atan(mech.ap_min / mech.g))
+            rel = (_boundary(systems.MechanismSystem(mech), sig, p, ratio)
                    / _boundary(blk, sig, p, ratio) - 1)
             rows.append({"signal": sig, "d/l": d, "e": mech.plus.e_close,
                          "max_dev": float(np.nanmax(np.abs(rel))),
@@ -198,9 +198,9 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
         arch = catenary(1.0, rise, d)
         fh = fourhinge_mechanism(arch)
         asm = mdof.arch_assembly(arch, blocks)
-        sys_m = mdof.MDOFSystem(asm, ap_min=fh.ap_min, p_ref=fh.p)
-        sys_f = spectra.MechanismSystem(fh)
-        sys_b = spectra.BlockSystem(alpha=math.atan(fh.ap_min / fh.g))
+        sys_m = systems.MDOFSystem(asm, ap_min_override=fh.ap_min, p_override=fh.p)
+        sys_f = systems.MechanismSystem(fh)
+        sys_b = systems.BlockSystem(alpha=math.atan(fh.ap_min / fh.g))
         for i, sig in enumerate(SIGNALS):
             m = motion.pulse(sig, 1.0, 1.0)
             bm, bf, bb = (spectra.compute_oas(s, m, p, ratio, tol=tol,
@@ -208,7 +208,7 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
                           for s in (sys_m, sys_f, sys_b))
             pp, rr = np.meshgrid(p, [1.5], indexing="ij")
             nopen = int(mdof.simulate_batch(asm, m, pp, rr, ap_min=fh.ap_min,
-                                            p_ref=fh.p).open_joints_max.max())
+                                            p_ref=fh.p).extras["open_joints_max"].max())
             s2, r2 = _compare(bm, bf)
             s3, r3 = _compare(bm, bb)
             rows.append({"signal": sig, "f/l": rise, "d/l": d,
@@ -252,19 +252,20 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
     p = np.linspace(1.0, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, 57)
     fh = fourhinge_mechanism(arch)
-    systems = [("circular arch, four-hinge mechanism", spectra.MechanismSystem(fh), "k-")]
+    curves = [("circular arch, four-hinge mechanism", systems.MechanismSystem(fh), "k-")]
     if mdof_blocks is not None:
         from rockarch import mdof
 
-        systems.append((f"circular arch, MDOF N = {mdof_blocks}",
-                        mdof.MDOFSystem(mdof.arch_assembly(arch, mdof_blocks), ap_min=fh.ap_min,
-                                        p_ref=fh.p), "r-"))
+        curves.append((f"circular arch, MDOF N = {mdof_blocks}",
+                        systems.MDOFSystem(mdof.arch_assembly(arch, mdof_blocks),
+                                           ap_min_override=fh.ap_min, p_override=fh.p),
+                        "r-"))
     for r, style in ((rep.equivalent, "b--"), (rep.lower_bound, "b:")):
-        systems.append((f"block of the {r.rule} replacement",
-                        spectra.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
+        curves.append((f"block of the {r.rule} replacement",
+                        systems.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), sharey=True)
     for ax, sig in zip(axes, SIGNALS, strict=True):
-        for label, system, style in systems:
+        for label, system, style in curves:
             ax.plot(p, _boundary(system, sig, p, ratio), style, lw=1.5, label=label)
         ax.set_title(f"{sig}, T = 1 s", fontsize=9)
         ax.set_xlabel("p [1/s]")

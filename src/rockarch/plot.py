@@ -92,20 +92,20 @@ def plot_response(resp, motion: GroundMotion | None = None):
         t, x, ap_min = resp.t, resp.u / level, mech.ap_min
         ylabel = r"$u / \delta$"
         title = f"{mech.name}, p = {resp.p:.3g} 1/s; {resp.motion_name}"
-        t_c, over = resp.t_collapse, resp.collapsed
+        t_c, over = resp.t_overturn, resp.overturned
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7.5, 5.2), sharex=True,
                                    gridspec_kw={"height_ratios": [2, 1]})
     ax1.plot(t, x, "k-", lw=1.0)
     ax1.axhline(1.0, color="r", ls=":", lw=0.8)
     ax1.axhline(-1.0, color="r", ls=":", lw=0.8)
-    if resp.impacts.size:
-        ax1.plot(resp.impacts, np.zeros_like(resp.impacts), "|", color="0.4", ms=6,
-                 label=f"impacts ({resp.impacts.size})")
+    if resp.impacts:
+        ax1.plot(resp.impact_times, np.zeros_like(resp.impact_times), "|", color="0.4", ms=6,
+                 label=f"impacts ({resp.impacts})")
     if over:
         ax1.plot([t_c], [np.sign(x[-1])], "rx", ms=9, label=f"overturned at t = {t_c:.3f} s")
     ax1.set_ylabel(ylabel)
     ax1.set_title(title, fontsize=9)
-    if resp.impacts.size or over:
+    if resp.impacts or over:
         ax1.legend(loc="upper right", fontsize=8)
     t_end = max(resp.t_end, t[-1])
     if motion is not None:
@@ -118,4 +118,20 @@ def plot_response(resp, motion: GroundMotion | None = None):
     ax2.set_xlabel("t [s]")
     ax2.set_xlim(0, t_end)
     fig.tight_layout()
+    return fig
+
+
+def plot_site(ds: xr.Dataset):
+    """The records' OAS boundaries of a site OAS, their envelope and percentile curve."""
+    fig, ax = plt.subplots(figsize=(7, 4.4))
+    for k in range(ds.sizes["record"]):
+        ax.plot(ds["p"].values, ds["boundary"].values[k], lw=0.8,
+                label=str(ds["record_name"].values[k])[:50])
+    ax.plot(ds["p"].values, ds["envelope"].values, "k-", lw=2, label="envelope")
+    ax.plot(ds["p"].values, ds["characteristic"].values, "k--", lw=1.2,
+            label=f"{ds.attrs['percentile']:g}th percentile")
+    ax.set_xlabel("frequency parameter p [1/s]")
+    ax.set_ylabel("lowest overturning ap/ap,min")
+    ax.set_title(ds.attrs["title"], fontsize=9)
+    ax.legend(fontsize=7)
     return fig

@@ -13,10 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch.motion import GroundMotion
-
 #: Standard gravity [m/s²] used to convert records given in units of g.
-G_STANDARD = 9.80665
+from rockarch.constants import G_STANDARD
+from rockarch.motion import GroundMotion
 
 _UNITS = {  # factor to m/s²
     "g": G_STANDARD,

@@ -19,9 +19,10 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from rockarch import __version__, spectra
+from rockarch import __version__, spectra, systems
+from rockarch.constants import G_STANDARD, OAS_TOL
 from rockarch.motion import GroundMotion
-from rockarch.records import G_STANDARD, read_record
+from rockarch.records import read_record
 
 KIND = "rockarch-site-oas"
 FORMAT_VERSION = 1
@@ -66,7 +67,7 @@ def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], l
 
 
 def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
-             percentile: float = 50.0, tol: float = spectra.TOL, hashes=None,
+             percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
              progress: bool = True, executor=None, store=None,
              **system_kw) -> xr.Dataset:
     """Block OAS of every record and the site's envelope and percentile curves (Sect. 9).
@@ -81,7 +82,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
         raise ValueError("a site OAS needs at least one record")
     if not 0.0 <= float(percentile) <= 100.0:
         raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
-    system = spectra.BlockSystem(alpha=alpha, **system_kw)
+    system = systems.BlockSystem(alpha=alpha, **system_kw)
     from rockarch import sweep
 
     executor, owned = sweep.as_executor(executor)

@@ -11,7 +11,6 @@ records) are never filled in.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
 from typing import Protocol
 
 import numpy as np
@@ -19,17 +18,12 @@ import xarray as xr
 from tqdm.auto import tqdm
 
 from rockarch import __version__, sweep
-from rockarch.block import EPS_REST, H_FACTOR, T_FREE, G, RigidBlock, simulate_batch
-from rockarch.mechanism import SDOFMechanism
-from rockarch.mechanism import simulate_batch as mechanism_simulate_batch
+from rockarch.constants import OAS_TOL as TOL
 from rockarch.motion import GroundMotion
-
-#: Default bisection tolerance of the boundary (in ratio units).
-TOL = 1e-3
 
 
 class OASSystem(Protocol):
-    """What an OAS needs from a structure: overturned? for many (p, ratio) pairs."""
+    """What an OAS needs from a structure (:mod:`rockarch.systems` builds them)."""
 
     name: str
 
@@ -39,63 +33,6 @@ class OASSystem(Protocol):
 
     def attrs(self) -> dict:
         """Parameters to store with the result (plain numbers and strings)."""
-
-
-@dataclass(frozen=True)
-class BlockSystem:
-    """Rigid blocks of slenderness ``alpha`` for an OAS (p varies across the map)."""
-
-    alpha: float
-    g: float = G
-    restitution: float | None = None
-    t_free: float = T_FREE
-    h_factor: float = H_FACTOR
-    eps_rest: float = EPS_REST
-    name: str = "block"
-
-    def __post_init__(self) -> None:
-        RigidBlock(1.0, self.alpha, self.g, self.restitution)  # validate
-
-    def run(self, motion: GroundMotion, p: np.ndarray, ratio: np.ndarray):
-        res = simulate_batch(motion, p, ratio, self.alpha, g=self.g,
-                             restitution=self.restitution, t_free=self.t_free,
-                             h_factor=self.h_factor, eps_rest=self.eps_rest)
-        return res.overturned, res.max_theta_over_alpha
-
-    def attrs(self) -> dict:
-        d = {k: v for k, v in asdict(self).items() if v is not None}
-        d["restitution"] = RigidBlock(1.0, self.alpha, self.g, self.restitution).r
-        d["ap_min"] = RigidBlock(1.0, self.alpha, self.g).ap_min
-        return d
-
-
-@dataclass(frozen=True)
-class MechanismSystem:
-    """An SDOF mechanism of fixed shape for an OAS: p varies by scaling its size
-    (p ∝ 1/sqrt(size)); ratio scales the motion to a peak of ratio·ap,min."""
-
-    mechanism: SDOFMechanism
-    t_free: float = T_FREE
-    h_factor: float = H_FACTOR
-    eps_rest: float = EPS_REST
-
-    @property
-    def name(self) -> str:
-        return self.mechanism.name
-
-    def run(self, motion: GroundMotion, p: np.ndarray, ratio: np.ndarray):
-        return mechanism_simulate_batch(self.mechanism, motion, p, ratio, t_free=self.t_free,
-                                        h_factor=self.h_factor, eps_rest=self.eps_rest)
-
-    def attrs(self) -> dict:
-        m = self.mechanism
-        d = {"kind": "mechanism", "ap_min": m.ap_min, "delta": m.delta, "p_ref": m.p,
-             "size_ref": m.size, "g": m.g, "t_free": self.t_free, "h_factor": self.h_factor,
-             "eps_rest": self.eps_rest,
-             "restitution": -1.0 if m.restitution is None else m.restitution,
-             "e_plus": m.plus.e_close, "e_minus": m.minus.e_close}
-        d.update({k: v for k, v in m.info.items() if isinstance(v, (int, float, str))})
-        return d
 
 
 def _grid(name: str, values) -> np.ndarray:
@@ -117,7 +54,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     Parameters
     ----------
     system : OASSystem
-        E.g. :class:`BlockSystem`.
+        E.g. :func:`rockarch.systems.system`'s result.
     motion : GroundMotion
         Its shape is used; each run scales it to a peak of ratio·ap,min.
     p, ratio : array-like

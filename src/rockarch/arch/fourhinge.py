@@ -30,7 +30,8 @@ from scipy.optimize import brentq
 
 from rockarch._validate import positive
 from rockarch.arch.geometry import Arch, Voussoirs
-from rockarch.arch.thrust import G, Hinge, ThrustResult, limit_analysis
+from rockarch.arch.thrust import Hinge, ThrustResult, limit_analysis
+from rockarch.constants import G
 
 
 def _perp(p: np.ndarray) -> np.ndarray:

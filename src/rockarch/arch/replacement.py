@@ -33,7 +33,8 @@ from rockarch.arch.geometry import (
     voussoirs,
     weighted_catenary,
 )
-from rockarch.arch.thrust import G, limit_analysis
+from rockarch.arch.thrust import limit_analysis
+from rockarch.constants import G
 
 RULES = ("lower-bound", "equivalent")
 _AXIS_SAMPLES = 801

@@ -25,8 +25,8 @@ from scipy.optimize import brentq, linprog
 
 from rockarch._validate import in_range, positive
 from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch, Voussoirs, voussoirs
+from rockarch.constants import G
 
-G = 9.81
 _LAMBDA_CAP = 1e3  # a "mechanism" needing more than 1000 g is no mechanism
 
 

@@ -8,7 +8,7 @@ Moreau–Jean time stepping with an exact LCP solve per step (docs/mdof.md)::
     from rockarch import mdof, motion
     a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
     res = mdof.simulate(a, motion.sine(1.2 * a.ap_min, 1.0))
-    res.summary()
+    res.to_dict()
 """
 
 from rockarch.mdof.assembly import (
@@ -21,16 +21,11 @@ from rockarch.mdof.assembly import (
     stack,
 )
 from rockarch.mdof.simulate import (
-    GAP_TOL,
-    H_FACTOR,
-    MDOFBatch,
     MDOFResponse,
+    check_settings,
     simulate,
     simulate_batch,
 )
-from rockarch.mdof.spectra import MDOFSystem
 
-__all__ = ["GAP_TOL", "H_FACTOR", "MIN_VOUSSOIRS", "Assembly", "MDOFBatch", "MDOFResponse",
-           "MDOFSystem",
-           "arch_assembly", "block_from_p_alpha", "column", "simulate", "simulate_batch",
-           "single_block", "stack"]
+__all__ = ["MIN_VOUSSOIRS", "Assembly", "MDOFResponse", "arch_assembly", "block_from_p_alpha",
+           "check_settings", "column", "simulate", "simulate_batch", "single_block", "stack"]

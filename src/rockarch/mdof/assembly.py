@@ -23,8 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rockarch._validate import positive
-
-G = 9.81
+from rockarch.constants import G
 
 
 @dataclass(frozen=True)

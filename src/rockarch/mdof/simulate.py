@@ -8,27 +8,22 @@ from dataclasses import dataclass
 import numpy as np
 
 from rockarch._validate import in_range
-from rockarch.block import T_FREE
+from rockarch.constants import GAP_TOL, T_FREE
+from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
 from rockarch.mdof import kernels as _k
 from rockarch.mdof.assembly import Assembly
 from rockarch.motion import GroundMotion
-
-#: Default time step h = H_FACTOR / p (p of the assembly at its actual size). The
-#: convergence study in docs/mdof.md: halving it changes < 1 % of an OAS map's cells.
-H_FACTOR = 0.005
-#: Default contact tolerance, as a fraction of the thinnest joint: a corner with a gap
-#: below it counts as touching (index set of the contact problem) and as closed.
-GAP_TOL = 1e-4
+from rockarch.response import Batch, Response, run_batch
 
 
-def _check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
+def check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
     in_range("t_free", t_free, 0.0, math.inf, hi_open=True)
     in_range("h_factor (time step · p)", h_factor, 1e-4, 0.05)
     in_range("gap_tol (fraction of the joint thickness)", gap_tol, 1e-10, 1e-3)
 
 
-@dataclass(frozen=True)
-class MDOFResponse:
+@dataclass(frozen=True, kw_only=True)
+class MDOFResponse(Response):
     """Time history and summary of one MDOF simulation.
 
     ``t`` (nt,), ``q`` (nt, nb, 3) = centroid x, y and rotation of every block (ground
@@ -38,27 +33,19 @@ class MDOFResponse:
     """
 
     assembly: Assembly
-    motion_name: str
     scale: float
-    t: np.ndarray
     q: np.ndarray
     joints: np.ndarray
     energy: np.ndarray
-    overturned: bool
-    t_overturn: float | None
-    max_theta_over_alpha: float
-    impacts: int
     open_joints_max: int
     steps: int
     h: float
     lcp_failures: int
     ground: GroundMotion | None = None
 
-    def summary(self) -> dict:
-        """The CLI's ``--json`` output."""
-        return {"overturned": bool(self.overturned), "t_overturn": self.t_overturn,
-                "max_theta_over_alpha": float(self.max_theta_over_alpha),
-                "impacts": int(self.impacts), "open_joints_max": int(self.open_joints_max)}
+    def to_dict(self) -> dict:
+        """The verdict plus ``open_joints_max`` (the CLI's ``--json`` output)."""
+        return {**super().to_dict(), "open_joints_max": int(self.open_joints_max)}
 
     def corners_at(self, i: int) -> np.ndarray:
         """Block outlines at record i: list of (K, 2) arrays in the ground frame."""
@@ -89,7 +76,7 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
     Free motion continues ``t_free`` s after the motion ends, or until rest or collapse.
     """
-    _check_settings(t_free, h_factor, gap_tol)
+    check_settings(t_free, h_factor, gap_tol)
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
                                                              lo_open=True, hi_open=True)) \
         / assembly.size
@@ -111,63 +98,39 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     q0 = np.zeros((1, nb_, 3))
     q0[0, :, :2] = c0 * scale
     return MDOFResponse(
-        assembly=assembly, motion_name=name, scale=scale,
+        system=assembly.name, assembly=assembly, motion_name=name, scale=scale,
         t=np.concatenate([[0.0], out_t[:n_rec]]), q=np.concatenate([q0, out_q[:n_rec]]),
         joints=np.concatenate([np.zeros((1, nj), np.int8), out_s[:n_rec]]),
-        energy=np.concatenate([[0.0], out_e[:n_rec]]), overturned=st == 1,
-        t_overturn=float(tc) if st == 1 else None, max_theta_over_alpha=float(mx),
+        energy=np.concatenate([[0.0], out_e[:n_rec]]), overturned=bool(st == 1),
+        t_overturn=float(tc) if st == 1 else None, max_rotation_ratio=float(mx),
+        t_end=float(out_t[n_rec - 1]) if n_rec else 0.0,
         impacts=int(imp), open_joints_max=int(nopen), steps=int(steps), h=h,
         lcp_failures=int(fails), ground=motion)
-
-
-@dataclass(frozen=True)
-class MDOFBatch:
-    """Summaries of many simulations (arrays aligned with the inputs)."""
-
-    overturned: np.ndarray
-    t_overturn: np.ndarray
-    max_theta_over_alpha: np.ndarray
-    impacts: np.ndarray
-    open_joints_max: np.ndarray
-    lcp_failures: np.ndarray
 
 
 def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
                    ap_min: float | None = None, p_ref: float | None = None,
                    t_free: float = T_FREE, h_factor: float = H_FACTOR,
-                   gap_tol: float = GAP_TOL) -> MDOFBatch:
+                   gap_tol: float = GAP_TOL) -> Batch:
     """Run the assembly's shape at many (p, ratio) pairs in parallel (numba threads).
 
     The motion's shape is normalised to unit peak and scaled to ratio·ap_min; the size is
     set so that the reference frequency parameter equals p. ``ap_min``/``p_ref`` override
     the assembly's own reference values (e.g. those of the continuous four-hinge mechanism).
     """
-    _check_settings(t_free, h_factor, gap_tol)
+    check_settings(t_free, h_factor, gap_tol)
     ap = assembly.ap_min if ap_min is None else float(ap_min)
     pr = assembly.p_ref if p_ref is None else float(p_ref)
-    p_arr, r_arr = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(ratio, float))
-    shape = p_arr.shape
-    pf, rf = p_arr.ravel(), r_arr.ravel()
-    if pf.size and not (np.all(np.isfinite(pf)) and np.all(pf > 0)):
-        raise ValueError("p must be a finite number > 0 for every run")
-    if rf.size and not (np.all(np.isfinite(rf)) and np.all(rf >= 0)):
-        raise ValueError("ratio ap/ap,min must be finite and >= 0")
     unit = motion.normalized()
     tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)
-    scales = (pr / pf) ** 2
-    p_act = assembly.p_ref / np.sqrt(scales)
-    hs = h_factor / p_act
-    perm = np.random.default_rng(0).permutation(pf.size)
     mass, ine, c0, rl, rr, n0, tmin = assembly.kernel_args()
-    st, tc, mx, ni, no, nf = _k.run_batch(
-        mass, ine, c0, rl, rr, n0, np.ascontiguousarray(scales[perm]), tk, ak,
-        np.ascontiguousarray(rf[perm] * ap), assembly.g, np.ascontiguousarray(hs[perm]),
-        float(unit.duration + t_free), float(unit.duration), gap_tol, tmin,
-        assembly.delta_ref)
-    inv = np.empty_like(perm)
-    inv[perm] = np.arange(perm.size)
-    return MDOFBatch(overturned=(st[inv] == 1).reshape(shape),
-                     t_overturn=tc[inv].reshape(shape),
-                     max_theta_over_alpha=mx[inv].reshape(shape),
-                     impacts=ni[inv].reshape(shape), open_joints_max=no[inv].reshape(shape),
-                     lcp_failures=nf[inv].reshape(shape))
+
+    def run(pf, rf):
+        scales = (pr / pf) ** 2
+        hs = h_factor / (assembly.p_ref / np.sqrt(scales))
+        return _k.run_batch(
+            mass, ine, c0, rl, rr, n0, scales, tk, ak, np.ascontiguousarray(rf * ap),
+            assembly.g, hs, float(unit.duration + t_free), float(unit.duration), gap_tol,
+            tmin, assembly.delta_ref)
+
+    return run_batch(p, ratio, run, extras=("open_joints_max", "lcp_failures"))

@@ -31,7 +31,7 @@ from rockarch.arch.fourhinge import (
     potential_du,
 )
 from rockarch.arch.geometry import Arch
-from rockarch.block import G
+from rockarch.constants import G
 from rockarch.mechanism import TABLE_INTERVALS, SDOFMechanism, tabulate
 
 

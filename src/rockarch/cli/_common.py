@@ -1,0 +1,210 @@
+"""Shared by the CLI commands: one-line errors (exit 2), JSON output, the option dialect,
+choices read from the library's registries, and the parsing of lists and grids."""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+import sys
+from collections.abc import Callable
+from enum import Enum
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import typer
+
+from rockarch.arch.geometry import SHAPES
+from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
+from rockarch.motion import SIGNALS, GroundMotion, pulse
+from rockarch.records import read_record
+from rockarch.systems import KINDS
+
+
+def _clean(obj: Any) -> Any:
+    """Turn numpy scalars/arrays and NaN into plain JSON values (NaN/inf -> null)."""
+    if isinstance(obj, dict):
+        return {str(k): _clean(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_clean(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _clean(obj.tolist())
+    if isinstance(obj, (np.bool_, bool)):
+        return bool(obj)
+    if isinstance(obj, (np.integer, int)):
+        return int(obj)
+    if isinstance(obj, (np.floating, float)):
+        v = float(obj)
+        return v if math.isfinite(v) else None
+    return obj
+
+
+def print_json(obj: Any) -> None:
+    """Print one JSON object on stdout (NaN -> null, numpy -> plain)."""
+    sys.stdout.write(json.dumps(_clean(obj)) + "\n")
+    sys.stdout.flush()
+
+
+def fail(message: str) -> None:
+    """Print one clear line on stderr and exit with status 2."""
+    typer.echo(f"error: {message}", err=True)
+    raise typer.Exit(code=2)
+
+
+def guarded(func: Callable) -> Callable:
+    """Decorate a CLI command: ValueError / OSError become one line on stderr and exit 2."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except (ValueError, OSError) as exc:
+            fail(str(exc) if str(exc) else exc.__class__.__name__)
+
+    return wrapper
+
+
+# --- registries as CLI choices (defined once in the library) ------------------------------
+
+def _choices(name: str, values) -> type[Enum]:
+    return Enum(name, {v: v for v in values}, type=str)
+
+
+Signal = _choices("Signal", SIGNALS)
+Shape = _choices("Shape", SHAPES)
+System = _choices("System", KINDS)
+
+
+def value(choice) -> str | None:
+    """The plain string of an enum choice (None stays None)."""
+    return None if choice is None else choice.value
+
+
+# --- parsing ---------------------------------------------------------------------------------
+
+def float_list(name: str, text: str) -> np.ndarray:
+    """A comma-separated list of finite numbers (``;`` also separates)."""
+    parts = text.replace(";", ",").split(",")
+    if any(not p.strip() for p in parts) and text.strip():
+        raise ValueError(f"{name} has an empty entry: {text!r} (write e.g. 1,2,3)")
+    try:
+        vals = [float(v) for v in parts if v.strip()]
+    except ValueError:
+        raise ValueError(
+            f"{name} must be a comma-separated list of numbers, got {text!r}") from None
+    if not vals:
+        raise ValueError(f"{name} is empty")
+    if not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must hold finite numbers, got {text!r}")
+    return np.array(vals)
+
+
+def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
+                 units: str | None) -> GroundMotion:
+    """The ground-motion shape of --signal/--period or --record (peak 1 for pulses)."""
+    if record is not None and signal is not None:
+        raise ValueError("give either --record or --signal/--period, not both")
+    if record is not None:
+        return read_record(record, units=units)
+    if signal is None:
+        raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
+    if period is None:
+        raise ValueError(f"--signal {signal.value} needs --period T (seconds)")
+    return pulse(signal.value, 1.0, period, cycles)
+
+
+def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
+           ) -> np.ndarray:
+    """The p values of --p LIST or --p-min/--p-max/--p-steps [1/s]."""
+    if p is not None:
+        if p_min is not None or p_max is not None:
+            raise ValueError("give either --p LIST or --p-min/--p-max/--p-steps, not both")
+        return float_list("--p", p)
+    if p_min is None or p_max is None:
+        raise ValueError("give the p values: --p 0.5,1,2 or --p-min A --p-max B --p-steps N")
+    if not (0 < p_min < p_max):
+        raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
+    if p_steps < 2:
+        raise ValueError("--p-steps must be >= 2")
+    return np.round(np.linspace(p_min, p_max, p_steps), 12)
+
+
+#: Largest ap/ap,min of an OAS grid unless --ratio-max says otherwise.
+RATIO_MAX = 5.0
+
+
+def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> np.ndarray:
+    """The ap/ap,min values of --ratio-min/--ratio-max/--ratio-steps (rounded to 12 digits so
+    that 1.7 prints as 1.7, not 1.7000000000000002). One step is --ratio-min alone."""
+    if ratio_steps < 1:
+        raise ValueError("--ratio-steps must be >= 1")
+    if ratio_steps == 1:
+        if ratio_max is not None and ratio_max != ratio_min:
+            raise ValueError("--ratio-steps 1 computes only --ratio-min: leave out --ratio-max "
+                             "or give more steps")
+        if not (ratio_min >= 0 and math.isfinite(ratio_min)):
+            raise ValueError(f"need a finite --ratio-min >= 0, got {ratio_min}")
+        return np.array([ratio_min])
+    ratio_max = RATIO_MAX if ratio_max is None else ratio_max
+    if not (0 <= ratio_min <= ratio_max and math.isfinite(ratio_max)):
+        raise ValueError(f"need 0 <= --ratio-min <= --ratio-max, got {ratio_min}, {ratio_max}")
+    return np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
+
+
+def check_outputs(*paths: Path | None) -> None:
+    """Every output path's folder exists (checked before any computation)."""
+    for path in paths:
+        if path is not None and not path.resolve().parent.is_dir():
+            raise ValueError(f"{path.parent}: directory does not exist")
+
+
+def echo_err(msg: str) -> None:
+    typer.echo(msg, err=True)
+
+
+# --- options shared by several commands ----------------------------------------------------
+
+SIGNAL_OPT = typer.Option(None, help="Pulse shape (paper Fig. 14).")
+PERIOD_OPT = typer.Option(None, help="Pulse period T [s].")
+CYCLES_OPT = typer.Option(3, help="Number of cycles of --signal harmonic.")
+RECORD_OPT = typer.Option(None, help="Record file (.AT2 or two-column time/acc).")
+UNITS_OPT = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, cm/s2.")
+RATIO_OPT = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min.")
+REST_OPT = typer.Option(None, help="Coefficient of restitution in [0, 1] (default: the "
+                        "structure's own impact law).")
+TFREE_OPT = typer.Option(T_FREE, help="Free motion after the ground motion ends [s].")
+G_OPT = typer.Option(G, help="Acceleration of gravity [m/s²].")
+PLOT_OPT = typer.Option(None, help="Write a PNG of the rotation and a_g over time.")
+JSON_OPT = typer.Option(False, "--json", help="Print one JSON object.")
+TOL_OPT = typer.Option(OAS_TOL, help="Bisection tolerance of the boundary (ratio); 0 "
+                       "turns the bisection off (the boundary is then the first "
+                       "overturning grid value).")
+
+SHAPE_OPT = typer.Option(None, help="Arch shape.")
+SPAN_OPT = typer.Option(None, help="Span l of the axis [m].")
+RISE_OPT = typer.Option(None, help="Rise f of the axis [m].")
+THICK_OPT = typer.Option(None, help="Uniform thickness d [m].")
+MDOF_BLOCKS_OPT = typer.Option(None, help="Number of voussoirs N (at least 5).")
+COLUMN_OPT = typer.Option(None, help="A column instead of an arch: blocks bottom to top, "
+                          "'B,H;B,H' or 'B,H,x_centre;...' [m].")
+MDOF_H_OPT = typer.Option(MDOF_H_FACTOR, help="Time step × p (safe range 1e-4 … 0.05).")
+MDOF_TOL_OPT = typer.Option(GAP_TOL, help="Contact tolerance / joint thickness "
+                            "(1e-10 … 1e-3).")
+
+# sweep options (rockarch.sweep; docs/sweeps.md), shared by oas and site-oas
+WORKERS_OPT = typer.Option(None, help="Local worker processes (default: every core; small "
+                           "sweeps run in-process).")
+SCHEDULER_OPT = typer.Option(None, help="Run on a running Dask scheduler tcp://HOST:PORT.")
+DASK_WORKERS_OPT = typer.Option(None, help="Start a local Dask cluster of N workers.")
+STORE_OPT = typer.Option(None, help="Resumable store of finished chunks (default: "
+                         "$ROCKARCH_CACHE or ~/.cache/rockarch).")
+NO_STORE_OPT = typer.Option(False, "--no-store", help="Keep no store (always recompute).")
+
+
+def column_blocks(column: str) -> list[np.ndarray]:
+    """--column 'B,H;B,H' as a list of (B, H[, x]) rows."""
+    rows = [r for r in column.split(";") if r.strip()]
+    if not rows:
+        raise ValueError("--column is empty: give 'B,H;B,H' (bottom to top, metres)")
+    return [float_list("--column block", r) for r in rows]

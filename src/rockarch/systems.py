@@ -1,0 +1,350 @@
+"""Rocking systems by kind: the one place where a structure is built from its options.
+
+Every kind of structure (:data:`KINDS`) becomes a *system*: a small frozen object with a
+name, the limit acceleration ``ap_min`` that the ratio ap/ap,min multiplies, a reference
+frequency parameter ``p_ref``, and three calls that take the ground motion's *shape*:
+
+- ``simulate(motion, ratio=, p=None)`` -> :class:`~rockarch.response.Response`: one time
+  history, the motion scaled to PGA = ratio·ap_min, the structure scaled to frequency
+  parameter p (p ∝ 1/sqrt(size) at fixed shape; None: its own size);
+- ``batch(motion, p, ratio)`` -> :class:`~rockarch.response.Batch`: many verdicts in
+  parallel (the OAS axes, docs/theory.md Eq. 4);
+- ``run(motion, p, ratio)`` -> (overturned, max_rotation_ratio): what a sweep stores.
+
+:func:`system` builds one from the keywords of ``rockarch oas`` / ``rockarch simulate``
+(the CLI calls it; so can a Python user). Sign conventions: docs/theory.md Sect. 0.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass
+
+from rockarch import mdof
+from rockarch import mechanism as mc
+from rockarch._validate import positive
+from rockarch.arch.geometry import make_arch
+from rockarch.block import RigidBlock
+from rockarch.block import simulate as block_simulate
+from rockarch.block import simulate_batch as block_batch
+from rockarch.constants import EPS_REST, GAP_TOL, MDOF_H_FACTOR, SDOF_H_FACTOR, T_FREE, G
+from rockarch.fourhinge_motion import fourhinge_mechanism
+from rockarch.mdof.assembly import Assembly
+from rockarch.motion import GroundMotion
+from rockarch.response import Batch, Response
+
+#: The system kinds, with one line each (the CLI's --system choices and help).
+KINDS = {
+    "block": "rigid rectangular block (Housner), given alpha (and p or width/height)",
+    "fourhinge": "the four-hinge mechanism of an arch (exact linkage kinematics)",
+    "frame": "rocking frame: two rigid columns and a rigid lintel",
+    "sdof": "any SDOF rocking mechanism given by p, delta and ap,min",
+    "mdof": "multi-block arch or column whose joints open and close",
+}
+
+#: Fewest voussoirs of a four-hinge mechanism.
+MIN_FOURHINGE_BLOCKS = 4
+
+
+def scale_to_ratio(motion: GroundMotion, ratio: float, ap_min: float) -> GroundMotion:
+    """The motion scaled so that its peak |a_g| is ratio·ap_min (docs/theory.md Eq. 4)."""
+    ratio = float(ratio)
+    if not (ratio >= 0 and math.isfinite(ratio)):
+        raise ValueError(f"ratio must be a finite number >= 0, got {ratio}")
+    return motion.scaled(ratio * ap_min / motion.pga)
+
+
+@dataclass(frozen=True)
+class BlockSystem:
+    """Rigid blocks of slenderness ``alpha`` (p varies across an OAS; ``p`` is the
+    default of :meth:`simulate`)."""
+
+    alpha: float
+    g: float = G
+    restitution: float | None = None
+    t_free: float = T_FREE
+    h_factor: float = SDOF_H_FACTOR
+    eps_rest: float = EPS_REST
+    name: str = "block"
+    p: float | None = None
+
+    def __post_init__(self) -> None:
+        RigidBlock(1.0 if self.p is None else self.p, self.alpha, self.g,
+                   self.restitution)  # validate
+
+    def block(self, p: float | None = None) -> RigidBlock:
+        """The rigid block of frequency parameter p (default: the system's own)."""
+        p = self.p if p is None else p
+        if p is None:
+            raise ValueError("a block needs its frequency parameter: give p (or width and "
+                             "height)")
+        return RigidBlock(p, self.alpha, self.g, self.restitution)
+
+    @property
+    def ap_min(self) -> float:
+        """g·tan(alpha) [m/s²] (paper Eq. 2)."""
+        return RigidBlock(1.0, self.alpha, self.g).ap_min
+
+    @property
+    def p_ref(self) -> float | None:
+        return self.p
+
+    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None
+                 ) -> Response:
+        blk = self.block(p)
+        return block_simulate(blk, scale_to_ratio(motion, ratio, blk.ap_min),
+                              t_free=self.t_free, h_factor=self.h_factor,
+                              eps_rest=self.eps_rest)
+
+    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
+        return block_batch(RigidBlock(1.0, self.alpha, self.g, self.restitution), motion, p,
+                           ratio, t_free=self.t_free, h_factor=self.h_factor,
+                           eps_rest=self.eps_rest)
+
+    def run(self, motion: GroundMotion, p, ratio):
+        res = self.batch(motion, p, ratio)
+        return res.overturned, res.max_rotation_ratio
+
+    def attrs(self) -> dict:
+        d = {k: v for k, v in asdict(self).items() if v is not None}
+        d["restitution"] = RigidBlock(1.0, self.alpha, self.g, self.restitution).r
+        d["ap_min"] = self.ap_min
+        return d
+
+
+@dataclass(frozen=True)
+class MechanismSystem:
+    """An SDOF mechanism of fixed shape: p varies by scaling its size (p ∝ 1/sqrt(size));
+    ratio scales the motion to a peak of ratio·ap_min."""
+
+    mechanism: mc.SDOFMechanism
+    t_free: float = T_FREE
+    h_factor: float = SDOF_H_FACTOR
+    eps_rest: float = EPS_REST
+
+    @property
+    def name(self) -> str:
+        return self.mechanism.name
+
+    @property
+    def ap_min(self) -> float:
+        return self.mechanism.ap_min
+
+    @property
+    def p_ref(self) -> float:
+        return self.mechanism.p
+
+    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None
+                 ) -> Response:
+        return mc.simulate(self.mechanism, scale_to_ratio(motion, ratio, self.ap_min), p=p,
+                           t_free=self.t_free, h_factor=self.h_factor,
+                           eps_rest=self.eps_rest)
+
+    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
+        return mc.simulate_batch(self.mechanism, motion, p, ratio, t_free=self.t_free,
+                                 h_factor=self.h_factor, eps_rest=self.eps_rest)
+
+    def run(self, motion: GroundMotion, p, ratio):
+        res = self.batch(motion, p, ratio)
+        return res.overturned, res.max_rotation_ratio
+
+    def attrs(self) -> dict:
+        m = self.mechanism
+        d = {"kind": "mechanism", "ap_min": m.ap_min, "delta": m.delta, "p_ref": m.p,
+             "size_ref": m.size, "g": m.g, "t_free": self.t_free, "h_factor": self.h_factor,
+             "eps_rest": self.eps_rest,
+             "restitution": -1.0 if m.restitution is None else m.restitution,
+             "e_plus": m.plus.e_close, "e_minus": m.minus.e_close}
+        d.update({k: v for k, v in m.info.items() if isinstance(v, (int, float, str))})
+        return d
+
+
+@dataclass(frozen=True)
+class MDOFSystem:
+    """An MDOF assembly of fixed shape: p varies by scaling its size (p ∝ 1/sqrt(size)),
+    ratio scales the motion's peak to ratio·ap_min.
+
+    ``ap_min_override``/``p_override`` put the map on another structure's axes (e.g. the
+    critical optimal four-hinge mechanism's, for the paper's Hypotheses 2 and 3); by
+    default the assembly's own (arch: N-voussoir LP and four-hinge mechanism).
+    """
+
+    assembly: Assembly
+    ap_min_override: float | None = None
+    p_override: float | None = None
+    t_free: float = T_FREE
+    h_factor: float = MDOF_H_FACTOR
+    gap_tol: float = GAP_TOL
+
+    def __post_init__(self) -> None:
+        mdof.check_settings(self.t_free, self.h_factor, self.gap_tol)
+
+    @property
+    def name(self) -> str:
+        return self.assembly.name
+
+    @property
+    def ap_min(self) -> float:
+        a = self.ap_min_override
+        return self.assembly.ap_min if a is None else a
+
+    @property
+    def p_ref(self) -> float:
+        p = self.p_override
+        return self.assembly.p_ref if p is None else p
+
+    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None
+                 ) -> Response:
+        return mdof.simulate(self.assembly, scale_to_ratio(motion, ratio, self.ap_min), p=p,
+                             t_free=self.t_free, h_factor=self.h_factor,
+                             gap_tol=self.gap_tol)
+
+    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
+        return mdof.simulate_batch(self.assembly, motion, p, ratio,
+                                   ap_min=self.ap_min_override, p_ref=self.p_override,
+                                   t_free=self.t_free, h_factor=self.h_factor,
+                                   gap_tol=self.gap_tol)
+
+    def run(self, motion: GroundMotion, p, ratio):
+        res = self.batch(motion, p, ratio)
+        return res.overturned, res.max_rotation_ratio
+
+    def attrs(self) -> dict:
+        a = self.assembly
+        d = {"kind": "mdof", "assembly": a.kind, "blocks": a.n_blocks, "joints": a.n_joints,
+             "ap_min": self.ap_min, "p_ref": self.p_ref,
+             "ap_min_assembly": a.ap_min, "p_assembly": a.p_ref, "delta_ref": a.delta_ref,
+             "size_ref": a.size, "g": a.g, "t_free": self.t_free, "h_factor": self.h_factor,
+             "gap_tol": self.gap_tol}
+        d.update({k: v for k, v in a.info.items() if isinstance(v, (int, float, str))})
+        return d
+
+
+def _need(kind: str, **given) -> None:
+    missing = [k for k, v in given.items() if v is None]
+    if missing:
+        flags = ", ".join("--" + k.replace("_", "-") for k in missing)
+        raise ValueError(f"--system {kind} needs {flags} (keywords: {', '.join(missing)})")
+
+
+def check_blocks(blocks: int | None) -> int | None:
+    """Voussoirs of a four-hinge mechanism: None (continuous) or at least 4."""
+    if blocks is not None and blocks < MIN_FOURHINGE_BLOCKS:
+        raise ValueError(f"at least {MIN_FOURHINGE_BLOCKS} voussoirs are needed for a "
+                         f"four-hinge mechanism, got {blocks}")
+    return blocks
+
+
+def _arch(shape, span, rise, thickness, rise_over_span, thickness_over_span, kind):
+    """The arch of a fourhinge/mdof system: real size (span, rise, thickness) or the
+    shape at span 1 (rise_over_span, thickness_over_span)."""
+    if span is not None or rise is not None or thickness is not None:
+        if rise_over_span is not None or thickness_over_span is not None:
+            raise ValueError("give either span/rise/thickness or rise_over_span/"
+                             "thickness_over_span, not both")
+        _need(kind, shape=shape, span=span, rise=rise, thickness=thickness)
+        return make_arch(shape, positive("span", span), positive("rise", rise),
+                         positive("thickness", thickness))
+    _need(kind, shape=shape, rise_over_span=rise_over_span,
+          thickness_over_span=thickness_over_span)
+    return make_arch(shape, 1.0, positive("rise_over_span", rise_over_span),
+                     positive("thickness_over_span", thickness_over_span))
+
+
+def system(kind: str, *, alpha: float | None = None, p: float | None = None,
+           width: float | None = None, height: float | None = None,
+           shape: str | None = None, span: float | None = None, rise: float | None = None,
+           thickness: float | None = None, rise_over_span: float | None = None,
+           thickness_over_span: float | None = None, blocks: int | None = None,
+           column: Sequence[Sequence[float]] | None = None, mass_ratio: float | None = None,
+           delta: float | None = None, ap_min: float | None = None,
+           restitution: float | None = None, g: float = G, t_free: float = T_FREE,
+           h_factor: float | None = None, gap_tol: float = GAP_TOL):
+    """Build the rocking system of one kind from the options of ``rockarch oas/simulate``.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    alpha, p, width, height :
+        block: slenderness [rad] and frequency parameter [1/s], or full width and height
+        [m]; frame: column slenderness and p of one column (default 1).
+    shape, span, rise, thickness, rise_over_span, thickness_over_span, blocks :
+        fourhinge/mdof: an arch of that shape, at its real size or at span 1; ``blocks``
+        voussoirs (fourhinge: default the continuous arch; mdof: required for an arch).
+    column :
+        mdof: a column instead of an arch, blocks bottom to top as (B, H) or (B, H, x) [m].
+    mass_ratio : frame: lintel mass over the mass of both columns.
+    delta, ap_min : sdof: neutral angle [rad] and limit acceleration [m/s²] (with p).
+    restitution : coefficient of restitution in [0, 1] (default the structure's own law;
+        not for mdof, whose impacts follow from the geometry).
+    g, t_free, h_factor, gap_tol : gravity, free motion after the record, step × p (default
+        per model, :mod:`rockarch.constants`), MDOF contact tolerance.
+
+    Returns
+    -------
+    BlockSystem, MechanismSystem or MDOFSystem
+    """
+    g = positive("g", g)
+    if kind not in KINDS:
+        raise ValueError(f"unknown system kind {kind!r}: choose one of {', '.join(KINDS)}")
+    sdof_h = SDOF_H_FACTOR if h_factor is None else h_factor
+    if kind == "block":
+        if width is not None or height is not None:
+            if p is not None or alpha is not None:
+                raise ValueError("give either width/height or p/alpha, not both")
+            _need(kind, width=width, height=height)
+            blk = RigidBlock.from_dimensions(width, height, g, restitution)
+            p, alpha = blk.p, blk.alpha
+        _need(kind, alpha=alpha)
+        return BlockSystem(alpha=alpha, g=g, restitution=restitution, t_free=t_free,
+                           h_factor=sdof_h, p=p)
+    if kind == "mdof":
+        if restitution is not None:
+            raise ValueError("an mdof system has no restitution: joints close with "
+                             "inelastic impacts (the restitution follows from the geometry)")
+        if column is not None:
+            if shape is not None or blocks is not None:
+                raise ValueError("give either a column or an arch (shape ... blocks), "
+                                 "not both")
+            assembly = mdof.column(column, g=g)
+        else:
+            arch = _arch(shape, span, rise, thickness, rise_over_span, thickness_over_span,
+                         kind)
+            _need(kind, blocks=blocks)
+            assembly = mdof.arch_assembly(arch, blocks, g=g)
+        return MDOFSystem(assembly, t_free=t_free,
+                          h_factor=MDOF_H_FACTOR if h_factor is None else h_factor,
+                          gap_tol=gap_tol)
+    if kind == "fourhinge":
+        arch = _arch(shape, span, rise, thickness, rise_over_span, thickness_over_span,
+                     kind)
+        label = None
+        if span is None:
+            label = f"{shape} f/l={rise_over_span:g} d/l={thickness_over_span:g}"
+        mech = fourhinge_mechanism(arch, check_blocks(blocks), g=g, restitution=restitution,
+                                   name=label)
+    elif kind == "frame":
+        _need(kind, alpha=alpha, mass_ratio=mass_ratio)
+        mech = mc.rocking_frame(alpha, 1.0 if p is None else p, mass_ratio, g, restitution)
+    else:
+        _need(kind, delta=delta, ap_min=ap_min)
+        mech = mc.generic(1.0 if p is None else p, delta, ap_min, g, restitution)
+    return MechanismSystem(mech, t_free=t_free, h_factor=sdof_h)
+
+
+def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None
+             ) -> Response:
+    """One time history: ``sys_`` at frequency parameter p (None: its own size) on the
+    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 4)."""
+    return sys_.simulate(motion, ratio=ratio, p=p)
+
+
+def batch(sys_, motion: GroundMotion, p, ratio) -> Batch:
+    """Many verdicts of ``sys_`` on one motion: (p, ratio) broadcast, run in parallel."""
+    return sys_.batch(motion, p, ratio)
+
+
+__all__ = ["KINDS", "BlockSystem", "MDOFSystem", "MechanismSystem", "batch", "check_blocks",
+           "scale_to_ratio", "simulate", "system"]
