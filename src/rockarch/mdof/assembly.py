@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rockarch._validate import positive
+from rockarch.arch import analyse, voussoirs
 from rockarch.constants import G
 
 
@@ -45,6 +46,37 @@ class Assembly:
     g: float = G
     info: dict = field(default_factory=dict)
     poly_body: tuple = ()  # body index of every polygon (default: one polygon per body)
+    # The contact graph (docs/theory.md §10). Joint k joins body_a[k] (on the tail side of
+    # normal[k]) to body_b[k] (the side the normal points into); -1 is the ground, or a
+    # support moving with it. mu[k] is the joint's Coulomb friction coefficient (inf: no
+    # sliding). None: the chain ground-0-1-...-(nb-1)[-ground] with no sliding.
+    body_a: np.ndarray | None = None
+    body_b: np.ndarray | None = None
+    mu: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        nb_, nj = self.n_blocks, self.n_joints
+        if self.body_a is None:
+            object.__setattr__(self, "body_a", np.arange(nj) - 1)
+        if self.body_b is None:
+            object.__setattr__(self, "body_b", np.where(np.arange(nj) < nb_, np.arange(nj), -1))
+        if self.mu is None:
+            object.__setattr__(self, "mu", np.full(nj, np.inf))
+        for name in ("body_a", "body_b"):
+            object.__setattr__(self, name, np.asarray(getattr(self, name), dtype=np.int64))
+        object.__setattr__(self, "mu", np.asarray(self.mu, dtype=float))
+
+    @property
+    def is_chain(self) -> bool:
+        """True if joint k joins body k-1 to body k (the ends on the ground)."""
+        k = np.arange(self.n_joints)
+        return bool(np.array_equal(self.body_a, k - 1) and np.array_equal(
+            self.body_b, np.where(k < self.n_blocks, k, -1)))
+
+    @property
+    def frictionless(self) -> bool:
+        """True if no joint can slide (every mu is infinite)."""
+        return bool(np.all(np.isinf(self.mu)))
 
     def body_of_polygon(self, i: int) -> int:
         return int(self.poly_body[i]) if self.poly_body else i
@@ -232,8 +264,6 @@ def arch_assembly(arch, n: int, *, g: float = G) -> Assembly:
     four-hinge (critical) mechanism. Raises ValueError if n is too small or the arch cannot
     stand.
     """
-    from rockarch.arch import analyse, voussoirs
-
     try:
         n = int(n)
     except (TypeError, ValueError):
