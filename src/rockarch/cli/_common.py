@@ -152,13 +152,6 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     return np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
 
 
-def check_outputs(*paths: Path | None) -> None:
-    """Every output path's folder exists (checked before any computation)."""
-    for path in paths:
-        if path is not None and not path.resolve().parent.is_dir():
-            raise ValueError(f"{path.parent}: directory does not exist")
-
-
 def echo_err(msg: str) -> None:
     typer.echo(msg, err=True)
 

@@ -30,13 +30,13 @@ from rockarch.cli._common import (
     UNITS_OPT,
     Shape,
     Signal,
-    check_outputs,
     column_blocks,
     guarded,
     motion_shape,
     print_json,
     value,
 )
+from rockarch.output import check_outputs
 from rockarch.systems import scale_to_ratio
 from rockarch.systems import system as make_system
 
@@ -46,10 +46,10 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     """Scale the motion to a peak of ratio·ap,min, run, then print JSON or a summary."""
     shape = motion_shape(signal, period, cycles, record, units)
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
-    check_outputs(plot)
+    check_outputs((plot, "--plot", "png"))
     resp = sysobj.simulate(shape, ratio=ratio)
     if plot is not None:
-        from rockarch.plot import plot_response, save_figure
+        from rockarch.output.figures import plot_response, save_figure
 
         save_figure(plot_response(resp, mot), plot)
     s = resp.to_dict()
@@ -201,21 +201,28 @@ def animate(
     record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
     t_free: float = typer.Option(3.0, help="Free motion after the ground motion ends [s]."),
     g: float = G_OPT, h_factor: float = MDOF_H_OPT, gap_tol: float = MDOF_TOL_OPT,
-    fps: int = typer.Option(20, help="Frames per second."),
-    frames: int = typer.Option(150, help="Largest number of frames."),
-    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1)."),
+    fps: int = typer.Option(20, help="Frames per second of simulated time (the GIF plays "
+                            "in real time unless --frames caps the count)."),
+    frames: int = typer.Option(150, help="Largest number of frames (spread evenly over the "
+                               "motion when fps × duration is larger)."),
+    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1); the held "
+                                  "last frame is magnified further when its displacements "
+                                  "would be too small to see (the factor is in its title)."),
+    progress: bool = typer.Option(None, "--progress/--no-progress",
+                                  help="Progress bar on stderr (default: when stderr is a "
+                                  "terminal)."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Animate an MDOF arch or column on a ground motion: blocks, open joints, a_g(t)."""
-    from rockarch.mdof.animate import animate as write_gif
+    from rockarch.output.animation import animate as write_gif
+    from rockarch.output.animation import check_options
 
+    check_options(fps, frames, magnify)
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, column, g, t_free, h_factor,
                           gap_tol)
-    if out.suffix.lower() != ".gif":
-        raise ValueError(f"--out must be a .gif file, got {out}")
-    check_outputs(out)
+    check_outputs((out, "--out", "gif"))
     resp = sysobj.simulate(motion_shape(signal, period, cycles, record, units), ratio=ratio)
-    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify)
+    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify, progress=progress)
     if json_out:
         print_json({**resp.to_dict(), "out": str(out)})
         return

@@ -23,7 +23,6 @@ from rockarch.cli._common import (
     TOL_OPT,
     WORKERS_OPT,
     Shape,
-    check_outputs,
     echo_err,
     guarded,
     p_grid,
@@ -31,6 +30,7 @@ from rockarch.cli._common import (
     ratio_grid,
 )
 from rockarch.design import design_check
+from rockarch.output import check_outputs, staged
 from rockarch.sweep import open_sweep
 
 
@@ -60,7 +60,7 @@ def site_oas(
 ) -> None:
     """Site OAS: slender-block OAS of every record, their envelope and percentile curve."""
     paths = list(records or []) + list(more or [])
-    check_outputs(out, plot)
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
     motions, hashes = site_mod.load_records(paths, units)
     ps = p_grid(None, p_min, p_max, p_steps)
     if ratio_steps < 2:
@@ -74,11 +74,12 @@ def site_oas(
                                tol=tol, hashes=hashes, t_free=t_free,
                                progress=sys.stderr.isatty(), executor=executor,
                                store=chunk_store)
-    site_mod.save(ds, out)
-    if plot is not None:
-        from rockarch.plot import plot_site, save_figure
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        site_mod.save(ds, out_tmp)
+        if plot is not None:
+            from rockarch.output.figures import plot_site, save_figure
 
-        save_figure(plot_site(ds), plot)
+            save_figure(plot_site(ds), plot_tmp)
     if json_out:
         print_json({"records": list(ds["record_name"].values), "p": ds["p"].values,
                     "envelope": ds["envelope"].values,
@@ -108,7 +109,7 @@ def design(
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
-    check_outputs(report)
+    check_outputs((report, "--report", "html"))
     site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
@@ -117,7 +118,7 @@ def design(
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
     if report is not None:
-        from rockarch.report import write_report
+        from rockarch.output.report import write_report
 
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} --site {site_file} --thickness-rule "
