@@ -218,9 +218,9 @@ def animate(
     from rockarch.output.animation import check_options
 
     check_options(fps, frames, magnify)
+    check_outputs((out, "--out", "gif"))
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, column, g, t_free, h_factor,
                           gap_tol)
-    check_outputs((out, "--out", "gif"))
     resp = sysobj.simulate(motion_shape(signal, period, cycles, record, units), ratio=ratio)
     write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify, progress=progress)
     if json_out:

@@ -70,14 +70,14 @@ def check_output(path: Path | str | None, option: str | None = None,
         return None
     path = Path(path)
     label = _label(option, path)
+    if path.is_dir():
+        raise ValueError(f"{label}: is a directory, give a file name")
     if fmt is not None:
         f = FORMATS[fmt]
         if path.suffix.lower() not in f.suffixes:
             got = f"'{path.suffix}'" if path.suffix else "none"
             raise ValueError(f"{label}: a {f.description} is written here, so the name must "
                              f"end in {' or '.join(f.suffixes)} (extension {got})")
-    if path.is_dir():
-        raise ValueError(f"{label}: is a directory, give a file name")
     folder = path.absolute().parent
     found = _existing_ancestor(folder)
     if not found.is_dir():
