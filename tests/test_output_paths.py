@@ -201,8 +201,8 @@ def test_oas_writes_both_outputs(tmp_path):
 @pytest.mark.slow
 def test_two_oas_processes_write_the_same_outputs(tmp_path):
     """Two `rockarch oas` processes with the same --out/--plot at once both succeed."""
-    args = [sys.executable, "-c", "from rockarch.cli import app; app()", *OAS, "--out", str(tmp_path / "s.nc"),
-            "--plot", str(tmp_path / "s.png")]
+    args = [sys.executable, "-c", "from rockarch.cli import app; app()", *OAS,
+            "--out", str(tmp_path / "s.nc"), "--plot", str(tmp_path / "s.png")]
     procs = [subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
              for _ in range(2)]
     for p in procs:

@@ -70,11 +70,11 @@ def draw_thrust_line(ax, res: ArchMechanism, label: str | None = None) -> None:
 
 
 def _finish(ax, ncol: int) -> None:
+    """Equal axes, labels, and the legend below the x label (constrained layout)."""
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=ncol, fontsize=7,
-              frameon=False)
+    ax.figure.legend(loc="outside lower center", ncol=ncol, fontsize=7, frameon=False)
 
 
 def _figsize(arch, width: float = 8.0) -> tuple[float, float]:
@@ -90,7 +90,7 @@ def mechanism_figure(res: ArchMechanism, *, u: float | None = None):
     """
     v = res.thrust.voussoirs
     arch = v.arch
-    fig = new_figure(_figsize(arch))
+    fig = new_figure(_figsize(arch), layout="constrained")
     ax = fig.subplots()
     draw_arch(ax, arch)
     if v.n <= 200:
@@ -128,7 +128,7 @@ def draw_replacements(ax, result) -> None:
 def design_arch_figure(result):
     """The design check's arch, both replacement catenaries, the chosen one's thrust line
     and hinges."""
-    fig = new_figure(_figsize(result.arch))
+    fig = new_figure(_figsize(result.arch), layout="constrained")
     ax = fig.subplots()
     draw_arch(ax, result.arch, color="0.88", edge="0.45")
     draw_replacements(ax, result)
