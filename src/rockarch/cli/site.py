@@ -126,7 +126,7 @@ def design(
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
     if json_out:
-        print_json(res.as_dict())
+        print_json(res.to_dict())
         return
     c = res.chosen
     typer.echo(f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = {thickness:g} m: "
