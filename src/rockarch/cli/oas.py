@@ -35,9 +35,9 @@ from rockarch.cli._common import (
     ratio_grid,
     value,
 )
+from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs, staged
 from rockarch.output.tables import boundary_table
-from rockarch.sweep import open_sweep
 from rockarch.systems import system as make_system
 
 
