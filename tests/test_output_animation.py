@@ -113,3 +113,17 @@ def test_cli_bad_animation_options(tmp_path, opt, msg):
                               str(tmp_path / "a.gif")])
     assert res.exit_code == 2 and msg in res.stderr
     assert len(res.stderr.strip().splitlines()) == 1 and not list(tmp_path.iterdir())
+
+
+def test_mdof_time_history_figure(collapse, tmp_path):
+    """`simulate mdof --plot`: the curve is the measure of max_rotation_ratio (every step is
+    recorded, so its maximum is the reported one)."""
+    from rockarch.output.figures import plot_response
+
+    fig = plot_response(collapse, collapse.ground)
+    y = fig.axes[0].lines[0].get_ydata()
+    assert y.max() == pytest.approx(collapse.max_rotation_ratio, rel=1e-12)
+    res = runner.invoke(app, ["simulate", "mdof", *ARCH, "--ratio", "1.5", "--t-free", "0.5",
+                              "--plot", str(tmp_path / "h.png")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "h.png").read_bytes()[:4] == b"\x89PNG"

@@ -46,7 +46,6 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     """Scale the motion to a peak of ratio·ap,min, run, then print JSON or a summary."""
     shape = motion_shape(signal, period, cycles, record, units)
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
-    check_outputs((plot, "--plot", "png"))
     resp = sysobj.simulate(shape, ratio=ratio)
     if plot is not None:
         from rockarch.output.figures import plot_response, save_figure
@@ -80,6 +79,7 @@ def simulate_block(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rigid block (exact Housner equation) on a pulse or a record."""
+    check_outputs((plot, "--plot", "png"))
     if width is None and height is None and (p is None or alpha is None):
         raise ValueError("give the block: --p P --alpha A (or --width B --height H)")
     sysobj = make_system("block", alpha=alpha, p=p, width=width, height=height,
@@ -105,6 +105,7 @@ def simulate_fourhinge(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate the four-hinge mechanism of an arch (exact linkage kinematics, Sect. 5)."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("fourhinge", shape=shape.value, span=positive("--span", span),
                          rise=positive("--rise", rise),
                          thickness=positive("--thickness", thickness), blocks=blocks, g=g,
@@ -128,6 +129,7 @@ def simulate_frame(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rocking frame: two rigid columns and a rigid lintel (paper Fig. 1)."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("frame", alpha=alpha, p=p, mass_ratio=mass_ratio, g=g,
                          restitution=restitution, t_free=t_free)
     mech = sysobj.mechanism
@@ -148,6 +150,7 @@ def simulate_sdof(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate any SDOF mechanism given by (p, delta, ap,min) (equivalence form, ref. [13])."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("sdof", p=p, delta=delta, ap_min=ap_min, g=g,
                          restitution=restitution, t_free=t_free)
     _run(sysobj, sysobj.name, signal, period, cycles, record, units, ratio, plot, json_out)
@@ -179,16 +182,19 @@ def simulate_mdof(
     signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
     record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
     t_free: float = TFREE_OPT, g: float = G_OPT, h_factor: float = MDOF_H_OPT,
-    gap_tol: float = MDOF_TOL_OPT, json_out: bool = JSON_OPT,
+    gap_tol: float = MDOF_TOL_OPT, plot: Path = typer.Option(
+        None, help="Write a PNG of the largest block rotation / delta and a_g over time."),
+    json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a multi-block arch (any joint may open and close) or column (MDOF model).
 
     --ratio is relative to the ap,min of the N-voussoir arch (thrust-line LP).
     """
+    check_outputs((plot, "--plot", "png"))
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, column, g, t_free, h_factor,
                           gap_tol)
     _run(sysobj, _mdof_header(sysobj.assembly), signal, period, cycles, record, units, ratio,
-         None, json_out)
+         plot, json_out)
 
 
 @app.command(short_help="GIF of an MDOF arch or column in motion.")

@@ -93,7 +93,14 @@ def plot_oas(ds: xr.Dataset, ax=None, *, label: str | None = None, color: str = 
 
 
 def _history(resp) -> tuple[np.ndarray, np.ndarray, float, str, str]:
-    """(t, normalised rotation, ap,min, y label, title) of a block or mechanism response."""
+    """(t, normalised rotation, ap,min, y label, title) of a block, mechanism or MDOF
+    response. For MDOF the rotation is the largest block rotation over the reference
+    mechanism's delta (the measure of ``max_rotation_ratio``)."""
+    if hasattr(resp, "assembly"):
+        a = resp.assembly
+        x = np.abs(resp.q[:, :, 2]).max(axis=1) / a.delta_ref
+        return (resp.t, x, a.ap_min, r"$\max_j |\varphi_j| / \delta$",
+                f"{a.name}: {a.n_blocks} blocks; {resp.motion_name}")
     if hasattr(resp, "block"):
         blk = resp.block
         title = (f"block p = {blk.p:.3g} 1/s, alpha = {blk.alpha:.4g} rad, r = {blk.r:.4f}; "
@@ -107,18 +114,20 @@ def _history(resp) -> tuple[np.ndarray, np.ndarray, float, str, str]:
 
 def plot_response(resp, motion=None) -> Figure:
     """Normalised rotation (theta/alpha or u/delta) and a_g/ap,min over time, impacts and
-    overturning marked; ``resp`` is a block or mechanism response. Returns the figure."""
+    overturning marked; ``resp`` is a block, mechanism or MDOF response. Returns the
+    figure."""
     t, x, ap_min, ylabel, title = _history(resp)
     fig = new_figure((7.5, 5.2))
     ax1, ax2 = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     ax1.plot(t, x, "k-", lw=1.0)
     ax1.axhline(1.0, color="r", ls=":", lw=0.8)
-    ax1.axhline(-1.0, color="r", ls=":", lw=0.8)
-    if resp.impacts:
+    if x.min() < 0:  # signed rotation (block, SDOF mechanism); the MDOF measure is >= 0
+        ax1.axhline(-1.0, color="r", ls=":", lw=0.8)
+    if resp.impacts and hasattr(resp, "impact_times"):
         ax1.plot(resp.impact_times, np.zeros_like(resp.impact_times), "|", color="0.4", ms=6,
                  label=f"impacts ({resp.impacts})")
     if resp.overturned:
-        ax1.plot([resp.t_overturn], [np.sign(x[-1])], "rx", ms=9,
+        ax1.plot([resp.t_overturn], [np.interp(resp.t_overturn, t, x)], "rx", ms=9,
                  label=f"overturned at t = {resp.t_overturn:.3f} s")
     ax1.set_ylabel(ylabel)
     ax1.set_title(title, fontsize=9)
