@@ -327,9 +327,16 @@ def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h
     :func:`rockarch.limits.max_samples`), enlarged and rerun while the history was
     decimated below that limit; at the limit the history is decimated (the verdict is the
     same). Returns (status, t_collapse, max_ratio, t_end, t, theta, theta', impact_times,
-    stride); raises ValueError after :func:`rockarch.limits.max_steps` RK4 steps."""
+    stride); raises ValueError, before any work, if the run may need more than
+    :func:`rockarch.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.2))."""
     limit = limits.max_samples()
-    max_steps = limits.max_steps()
+    # known before the work: at most one RK4 step per knot and per h_factor/p seconds
+    need = tk.shape[0] + (tk[-1] - tk[0] + t_free) * p / h_factor
+    if not need <= limits.max_steps():
+        raise limits.too_many(f"a simulation of {tk[-1] - tk[0] + t_free:.6g} s at p = "
+                              f"{p:.4g} 1/s", need, "steps", limits.max_steps(),
+                              "lower --t-free or the motion's duration")
+    max_steps = 2 * int(need) + 1000  # safety net: events split steps
     cap = max(min(int(capacity), limit), 16)
     while True:
         out = [np.empty(cap) for _ in range(4)]
@@ -337,13 +344,13 @@ def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h
             tk, ak, scale, model, c, p, prm, tab, amin, level, e, float(t_free),
             float(h_factor), float(eps_rest), float(th0), float(om0), True, max_steps, *out)
         if status == -2:
-            raise ValueError(
-                f"the simulation stopped at t = {t_end:.6g} s after {max_steps:.3g} "
-                f"integration steps, the limit ({limits.ENV['steps']}): lower --t-free or "
-                f"the motion's duration, or raise {limits.ENV['steps']}")
+            raise ValueError(f"the simulation stopped at t = {t_end:.6g} s after "
+                             f"{max_steps:.3g} integration steps (twice the estimate)")
         if stride == 1 or cap >= limit:
-            return (status, t_c, mx, t_end, out[0][:n_rec].copy(), out[1][:n_rec].copy(),
-                    out[2][:n_rec].copy(), out[3][:min(n_imp, cap)].copy(), int(stride))
+            # a mostly full buffer is returned as is (no second copy at the memory peak)
+            hist = [b[:n] if 2 * n >= cap else b[:n].copy()
+                    for b, n in zip(out, (n_rec, n_rec, n_rec, min(n_imp, cap)), strict=True)]
+            return (status, t_c, mx, t_end, *hist, int(stride))
         cap = min(cap * 4, limit)
 
 
