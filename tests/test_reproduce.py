@@ -1,10 +1,12 @@
 """`rockarch reproduce --quick` writes every table and figure with a side-by-side index."""
 
+import pytest
 from typer.testing import CliRunner
 
 from rockarch.cli import app
 
 
+@pytest.mark.slow  # ~60 s alone, 170 s on a loaded machine: every table and figure
 def test_reproduce_quick(tmp_path):
     out = tmp_path / "paper"
     res = CliRunner().invoke(app, ["reproduce", "--out", str(out), "--quick"])
