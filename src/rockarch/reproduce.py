@@ -9,7 +9,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from rockarch import __version__, paper
+from rockarch import __version__, paper, reference
 
 
 def _dev(ours: float, ref: float) -> str:
@@ -31,30 +31,40 @@ def _table1_html(rows: list[dict]) -> str:
                    + [f"{pp[k]} / {oo[k]:.3f} ({_dev(oo[k], pp[k])})" for k in ("c1", "c2")]
                    + [f"{pp['c3']}/{pp['c3p']} / {oo['c3']:.3f}/{oo['c3p']:.3f}",
                       f"{pp['c4']} / {oo['c4']:.3f} ({_dev(oo['c4'], pp['c4'])})",
-                      f"{oo['c4_mirrored']:.3f} ({_dev(oo['c4_mirrored'], pp['c4'])})"])
-    return _table(["f/l", "d/l", "c1 paper / ours", "c2", "c3/c3'", "c4",
-                   "c4, delta on the other part"], out)
+                      f"{oo['c4_u']:.3f} ({_dev(oo['c4_u'], pp['c4'])})",
+                      f"{pp['c1'] * pp['c4']:.4f} / {oo['c1c4_eq12']:.4f} "
+                      f"({r['paper_c1c4_ratio']:.2f})"])
+    return _table(["f/l", "d/l", "c1 paper / ours", "c2", "c3/c3'",
+                   "c4 (delta of the end part at the extrados inner hinge)",
+                   "c4 on the coordinate u", "c1·c4 paper / Eq. 12 (ratio)"], out)
 
 
 def _table2_html(t2: dict) -> str:
-    rows = [["circular arch (d/l 0.0346)",
-             f"{paper.SECT8['c1']} / {t2['original']['c1']:.4f}",
-             f"{paper.SECT8['c2']} / {t2['original']['c2']:.4f}",
-             f"{paper.SECT8['ap_min']} / {t2['original']['ap_min']:.3f} "
-             f"({_dev(t2['original']['ap_min'], paper.SECT8['ap_min'])})", "–", "–",
-             f"– / {t2['original']['p']:.3f}"]]
-    for label, key in (("rockarch's construction", "fitted"),
-                       ("paper's geometry f = 2.924 m", "paper_geometry")):
-        for rule, ref in paper.TABLE2.items():
-            o = t2[key][rule]
-            rows.append([f"{rule}, {label}", f"{ref['c1']} / {o['c1']:.4f}",
-                         f"{ref['c2']} / {o['c2']:.4f}",
-                         f"{ref['ap_min']} / {o['ap_min']:.3f} "
-                         f"({_dev(o['ap_min'], ref['ap_min'])})",
-                         f"{ref['d/l']} / {o['d/l']:.4f}", f"{ref['R/l']} / {o['R/l']:.4f}",
-                         f"{ref['p']:.3f} / {o['p']:.3f} ({_dev(o['p'], ref['p'])})"])
-    return _table(["model", "c1 paper / ours", "c2", "ap,min [m/s²]", "d/l", "block R/l",
-                   "p [1/s]"], rows)
+    ref8 = reference.SECT8
+    o = t2["original"]
+    rows = [["circular arch (d/l 0.0346)", "–", "–", f"{ref8['c1']} / {o['c1']:.4f}",
+             f"{ref8['c2']} / {o['c2']:.4f}",
+             f"{ref8['ap_min']} / {o['ap_min']:.3f} ({_dev(o['ap_min'], ref8['ap_min'])})",
+             "–", f"– / {o['p']:.3f}"]]
+    for label, key in (("band construction, own mass", "fitted"),
+                       ("band construction, original's mass", "fitted_original_mass"),
+                       ("paper's geometry l = 10 m, f = 2.924 m", "paper_geometry")):
+        for rule, ref in reference.TABLE2.items():
+            r = t2[key][rule]
+            per_own = r.get("d/l'")
+            d_l = (f"{ref['d/l']} / {r['d/l']:.4f} (per l), {per_own:.4f} (per l')"
+                   if per_own is not None else f"{ref['d/l']} (given)")
+            geo = (f"{r['span']:.3f} / {ref['rise']} / {r['rise']:.3f}" if "span" in r
+                   else f"10 / {ref['rise']} / {r['rise']:.3f}")
+            rows.append([f"{rule}, {label}", d_l, geo, f"{ref['c1']} / {r['c1']:.4f}",
+                         f"{ref['c2']} / {r['c2']:.4f} ({_dev(r['c2'], ref['c2'])})",
+                         f"{ref['ap_min']} / {r['ap_min']:.3f} "
+                         f"({_dev(r['ap_min'], ref['ap_min'])})",
+                         f"{ref['R/l']} / {r['R/l']:.4f}",
+                         f"{ref['p']:.3f} / {r['p']:.3f} ({_dev(r['p'], ref['p'])})"])
+    return _table(["model", "d/l paper / ours", "l' [m] / f' paper / ours [m]",
+                   "c1 paper / ours", "c2", "ap,min [m/s²]", "block R/l", "p [1/s]"],
+                  rows)
 
 
 def reproduce(out, *, quick: bool = False,
@@ -75,8 +85,10 @@ def reproduce(out, *, quick: bool = False,
     s8 = paper.sect8_rows()
     parts.append("<h2>Sect. 8: the circular arch</h2>" + _table(
         ["d/l", "ap,min paper / ours [m/s²]", "c1", "c2", "p [1/s]", "delta [rad]"],
-        [[r["d/l"], f"3.036 / {r['ap_min']:.3f} ({_dev(r['ap_min'], 3.036)})",
-          f"0.242 / {r['c1']:.3f}", f"0.768 / {r['c2']:.3f}", f"{r['p']:.3f}",
+        [[r["d/l"], f"{reference.SECT8['ap_min']} / {r['ap_min']:.3f} "
+          f"({_dev(r['ap_min'], reference.SECT8['ap_min'])})",
+          f"{reference.SECT8['c1']} / {r['c1']:.3f}",
+          f"{reference.SECT8['c2']} / {r['c2']:.3f}", f"{r['p']:.3f}",
           f"{r['delta']:.4f}"] for r in s8]))
     log("Table 2 …")
     t2 = paper.table2_rows()
