@@ -30,8 +30,8 @@ from rockarch.cli._common import (
     print_json,
     ratio_grid,
 )
+from rockarch.cli._sweep import open_sweep
 from rockarch.design import design_check
-from rockarch.sweep import open_sweep
 
 
 @app.command("site-oas", short_help="Site OAS of a set of records: envelope and percentile.")
