@@ -9,7 +9,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from rockarch import __version__, paper, reference
+from rockarch import __version__, background, paper, reference
 
 
 def _dev(ours: float, ref: float) -> str:
@@ -67,15 +67,48 @@ def _table2_html(t2: dict) -> str:
                   rows)
 
 
+def _background(out: Path, quick: bool, parts: list[str], log) -> None:
+    """Figs. 2 and 3: the block and column claims the design method rests on."""
+    log("Fig. 2 …")
+    rows2 = background.fig2(out / "fig2.png", n_p=15 if quick else 60,
+                            n_ratio=29 if quick else 71)
+    parts.append("<h2>Fig. 2: OAS of a rigid block</h2><img src='fig2.png' width='100%'>"
+                 + _table(["signal", "alpha", "share of the map overturned",
+                           "p with a safe island above an overturning ratio"],
+                          [[r["signal"], r["alpha"], f"{100 * r['overturned_share']:.0f} %",
+                            f"{r['p_with_safe_islands']} of {r['n_p']}"] for r in rows2]))
+    log("Fig. 3a …")
+    rows3a = background.fig3a(out / "fig3a.png", n_p=10 if quick else 40,
+                              n_ratio=15 if quick else 57, tol=2e-2 if quick else 1e-3)
+    parts.append("<h2>Fig. 3a: the slender block is on the safe side</h2>"
+                 "<img src='fig3a.png' width='100%'>"
+                 + _table(["signal", "less slender block alpha",
+                           "p where the slender block's boundary is lower or equal"],
+                          [[r["signal"], r["alpha"], f"{100 * r['slender_safe']:.0f} %"]
+                           for r in rows3a]))
+    log("Fig. 3b (MDOF columns) …")
+    rows3b = background.fig3b(out / "fig3b.png", n_p=5 if quick else 20,
+                              n_ratio=15 if quick else 57, tol=2e-2 if quick else 1e-3,
+                              blocks=(1, 3) if quick else background.FIG3B_BLOCKS)
+    parts.append("<h2>Fig. 3b: columns against the monolithic block</h2>"
+                 "<img src='fig3b.png' width='100%'>"
+                 + _table(["signal", "blocks", "p where the column is at least as safe",
+                           "p where it is weaker", "mean boundary column / monolith − 1"],
+                          [[r["signal"], r["blocks"], f"{100 * r['column_safer']:.0f} %",
+                            f"{100 * r['column_weaker']:.0f} %", f"{r['mean_rel']:+.3f}"]
+                           for r in rows3b]))
+
+
 def reproduce(out, *, quick: bool = False,
               extra_sections: list[Callable[[Path, bool], str]] | None = None,
               log: Callable[[str], None] = print) -> Path:
-    """Write Table 1, Sect. 8, Table 2, Figs. 15, 16, 17 and 19, the Sect. 9 design example
-    (and ``extra_sections``) into ``out`` with an index.html."""
+    """Write Figs. 2–3, Table 1, Sect. 8, Table 2, Figs. 15, 16, 17 and 19, the Sect. 9 design
+    example (and ``extra_sections``) into ``out`` with an index.html."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     parts = []
+    _background(out, quick, parts, log)
     log("Table 1 …")
     parts.append("<h2>Table 1: catenary arches, constants of Eq. 14</h2>"
                  "<p>paper / rockarch (deviation); continuous (critical optimal) "
