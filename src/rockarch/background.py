@@ -71,6 +71,15 @@ def _figure(ncols: int, nrows: int = 1, width: float = 6.0, height: float = 4.4)
     return fig, fig.subplots(nrows, ncols, squeeze=False)
 
 
+def _boundary_axes(ax, title: str, xlabel: str) -> None:
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
+    ax.set_ylim(1, 8)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+
+
 def _save(fig, path) -> None:
     from rockarch.plot import save_figure
 
@@ -122,12 +131,7 @@ def fig3a(path, *, n_p: int = 40, n_ratio: int = 57, tol: float = 1e-3,
                     else 1.1, label=f"alpha = {a:g}")
             if a != FIG3_ALPHAS[0]:
                 rows.append({"signal": name, "alpha": a, "slender_safe": _share(slender, b)})
-        ax.set_title(f"{name}: slender vs less slender blocks", fontsize=9)
-        ax.set_xlabel("p [1/s]")
-        ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
-        ax.set_ylim(1, 8)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        _boundary_axes(ax, f"{name}: slender vs less slender blocks", "p [1/s]")
     _save(fig, path)
     return rows
 
@@ -163,12 +167,7 @@ def fig3b(path, *, n_p: int = 20, n_ratio: int = 57, tol: float = 1e-3,
                          "column_weaker": _below(b, mono),
                          "mean_rel": float(np.mean(b[both] / mono[both] - 1)) if both.any()
                          else math.nan})
-        ax.set_title(f"{name}: columns vs monolith, alpha = {FIG3B_ALPHA:g}, "
-                     f"H = {FIG3B_HEIGHT:g} m", fontsize=9)
-        ax.set_xlabel("p [1/s] (monolith)")
-        ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
-        ax.set_ylim(1, 8)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        _boundary_axes(ax, f"{name}: columns vs monolith, alpha = {FIG3B_ALPHA:g}, "
+                       f"H = {FIG3B_HEIGHT:g} m", "p [1/s] (monolith)")
     _save(fig, path)
     return rows
