@@ -82,10 +82,11 @@ def arch(
            else "continuous (critical optimal mechanism)"),
         f"  ap,min = {res.ap_min:.4f} m/s² (lambda = {res.lambda_:.5f}; virtual work "
         f"g*Bv/Bh = {res.ap_min_vw:.4f})",
-        f"  p = {res.p:.4f} 1/s, delta = {res.delta:.5f} rad, Bv = {res.Bv:.5g}, "
+        f"  p = {res.p:.4f} 1/s, delta = {res.delta_end:.5f} rad (part {res.end_part}, "
+        f"Table 1), delta_u = {res.delta:.5f} rad (coordinate u), Bv = {res.Bv:.5g}, "
         f"Bh = {res.Bh:.5g}, A = {res.A:.5g}",
         f"  c1 = {res.c1:.4f}, c2 = {res.c2:.4f}, c3/c3' = {res.c3:.3f}/{res.c3p:.3f}, "
-        f"c4 = {res.c4:.4f}",
+        f"c4 = {res.c4:.4f} (c4_u = {res.c4_u:.4f})",
         "  hinges: " + ", ".join(f"({h.x:.3f}, {h.y:.3f}) {h.side}" for h in res.hinges),
     ]
     if plot:

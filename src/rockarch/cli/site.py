@@ -101,6 +101,11 @@ def design(
     thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
                                        "equivalent (same ap,min) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope or characteristic."),
+    replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
+                                         "(uniform mass) or weighted (the funicular of the "
+                                         "arch's own mass)."),
+    replacement_mass: str = typer.Option("own", help="Replacement mass: own (its uniform "
+                                         "mass) or original (the arch's mass on its axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
     json_out: bool = JSON_OPT,
@@ -113,7 +118,8 @@ def design(
     site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
-    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g)
+    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g,
+                       axis=replacement_axis, mass=replacement_mass)
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
@@ -122,7 +128,8 @@ def design(
 
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} --site {site_file} --thickness-rule "
-               f"{thickness_rule} --curve {curve} --g {g:g}")
+               f"{thickness_rule} --curve {curve} --replacement-axis {replacement_axis} "
+               f"--replacement-mass {replacement_mass} --g {g:g}")
         write_report(res, site_ds, report, command=cmd, site_path=str(site_file),
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
@@ -132,8 +139,10 @@ def design(
     c = res.chosen
     typer.echo(f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = {thickness:g} m: "
                f"ap,min = {res.replacement.original.ap_min:.4f} m/s²")
-    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m, "
-               f"f = {c.rise:.4f} m, p = {c.p:.4f} 1/s, ap,min = {c.ap_min:.4f} m/s²")
+    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m "
+               f"(d/l' = {c.thickness / c.span:.4f}, d/l = {c.thickness / span:.4f}), "
+               f"l' = {c.span:.4f} m, f' = {c.rise:.4f} m, p = {c.p:.4f} 1/s, "
+               f"ap,min = {c.ap_min:.4f} m/s²")
     typer.echo(f"site {curve} at p: ap/ap,min = {res.ratio:.4f} -> safe PGA "
                f"{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
     if report is not None:
