@@ -30,7 +30,7 @@ from rockarch.arch.geometry import Arch, voussoirs
 from rockarch.constants import G
 from rockarch.mdof import polygons as pg
 from rockarch.mdof.assembly import Assembly
-from rockarch.mdof.statics import collapse, limit_analysis
+from rockarch.mdof.statics import LAMBDA_CAP, collapse, limit_analysis
 
 
 def friction_value(mu) -> float:
@@ -84,18 +84,21 @@ def assemble(*, name: str, kind: str, mass, inertia, centroid, polygons, joints,
     centroid = np.asarray(centroid, float)
     inertia = np.asarray(inertia, float)
     args = (mass, inertia, centroid, corners, normal, body_a, body_b)
-    rock = limit_analysis(*args, None, g=g, names=names)
-    if not math.isfinite(rock.ap_min):
+    fric = limit_analysis(*args, mus, g=g, names=names)
+    rock = fric if np.all(np.isinf(mus)) else limit_analysis(*args, None, g=g, names=names)
+    # the reference mechanism (p_ref, delta_ref): the no-sliding one; if nothing can rock
+    # without sliding (a block against a support), the friction one
+    ref = rock if math.isfinite(rock.ap_min) else fric
+    if not (math.isfinite(fric.ap_min) and math.isfinite(ref.p)):
         raise ValueError("the structure has no rocking mechanism below "
-                         f"{rock.lambda_:g} g: nothing can move")
-    fric = rock if np.all(np.isinf(mus)) else limit_analysis(*args, mus, g=g, names=names)
+                         f"{LAMBDA_CAP:g} g: nothing can move")
     pts = np.concatenate([np.asarray(p, float) for p in polygons])
     size = float(np.ptp(pts, axis=0).max())
-    moving = np.flatnonzero(rock.moving).tolist()
+    moving = np.flatnonzero(fric.moving).tolist()
     return Assembly(name=name, kind=kind, mass=mass, inertia=inertia, centroid=centroid,
                     corners=corners, normal=normal, polygons=tuple(polygons),
-                    ap_min=float(fric.ap_min), p_ref=float(rock.p),
-                    delta_ref=float(rock.delta), size=size, g=g,
+                    ap_min=float(fric.ap_min), p_ref=float(ref.p),
+                    delta_ref=float(ref.delta), size=size, g=g,
                     info={**(info or {}), "block_names": names, "mechanism_blocks": moving,
                           "ap_min_no_sliding": float(rock.ap_min),
                           "collapse_direction": int(fric.direction)},
