@@ -88,3 +88,27 @@ def test_bad_parameters_give_one_clear_error(kw, match):
         sy.generate(sy.RDKParameters(**{**P.to_dict(), **kw}), 0)
     with pytest.raises(ValueError, match="at least one"):
         sy.synthetic_motions(0)
+
+
+def test_records_synth_writes_a_suite_that_records_info_reads(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from rockarch.cli import app
+
+    out = tmp_path / "suite"
+    res = CliRunner().invoke(app, ["records", "synth", str(out), "--n", "3", "--seed", "5",
+                                   "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["records"] == [f"rdk-s5-00{k}.AT2" for k in range(3)]
+    s = ra.read_suite(out)
+    assert s.names == ["rdk-s5-000.AT2", "rdk-s5-001.AT2", "rdk-s5-002.AT2"]
+    for rec, m in zip(s, sy.synthetic_motions(3, seed=5), strict=True):
+        # .AT2 keeps 7 significant digits of each value in g
+        np.testing.assert_allclose(rec.motion.a, m.a, rtol=1e-6, atol=1e-7 * m.pga)
+        assert rec.station == m.name and rec.event == "Synthetic RDK08 seed 5"
+    params = (out / sy.PARAMETERS_FILE).read_text().splitlines()
+    assert params[0].startswith("file,arias,d5_95") and len(params) == 4
+    res = CliRunner().invoke(app, ["records", "synth", str(tmp_path / "a" / "b")])
+    assert res.exit_code == 2 and "directory does not exist" in res.stderr

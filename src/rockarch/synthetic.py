@@ -245,3 +245,33 @@ def synthetic_suite(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = 
     from rockarch.suite import from_motions
 
     return from_motions(synthetic_motions(n, seed, dt=dt, f_corner=f_corner))
+
+
+#: File listing the model parameters of a written synthetic suite (not read as a record).
+PARAMETERS_FILE = "_synthetic_parameters.csv"
+
+
+def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
+                f_corner: float = F_CORNER) -> list:
+    """Write ``n`` synthetic records as ``.AT2`` files ``rdk-s{seed}-{k:03d}.AT2`` into
+    ``directory`` (created if its parent exists), with their model parameters in
+    :data:`PARAMETERS_FILE`. Returns the record paths."""
+    from pathlib import Path
+
+    from rockarch.suite import write_at2
+
+    directory = Path(directory)
+    if not directory.parent.resolve().is_dir():
+        raise ValueError(f"{directory.parent}: directory does not exist")
+    directory.mkdir(exist_ok=True)
+    paths, lines = [], []
+    keys = list(RDKParameters.__dataclass_fields__)
+    for m in synthetic_motions(n, seed, dt=dt, f_corner=f_corner):
+        path = write_at2(directory / f"{m.name}.AT2", m,
+                         event=f"Synthetic RDK08 seed {int(seed)}", station=m.name,
+                         component="H")
+        paths.append(path)
+        lines.append(",".join([path.name, *(f"{m.meta[k]:.10g}" for k in keys)]))
+    (directory / PARAMETERS_FILE).write_text(
+        "\n".join([",".join(["file", *keys]), *lines]) + "\n")
+    return paths
