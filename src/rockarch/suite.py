@@ -382,8 +382,11 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
              damping: float | None = None) -> list[dict]:
     """Metadata and intensity measures of every record (``rockarch records info``): one dict
     per record, :meth:`SuiteRecord.metadata` plus the fields of
-    :class:`rockarch.intensity.IntensityMeasures` (``sa`` aligned with ``periods``)."""
+    :class:`rockarch.intensity.IntensityMeasures` (``sa`` aligned with ``periods``) and the
+    Baker (2007) pulse classification (``pulse_indicator``, ``tp`` [s], ``pulse_like``,
+    ``classification``, :mod:`rockarch.velocity_pulse`)."""
     from rockarch import intensity
+    from rockarch.velocity_pulse import baker_pulse
 
     per = intensity.PERIODS if periods is None else periods
     zeta = intensity.DAMPING if damping is None else damping
@@ -391,6 +394,9 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
     for rec in suite:
         d = rec.metadata()
         d.update(intensity.measures(rec.motion, per, zeta).to_dict())
+        pulse = baker_pulse(rec.motion).to_dict()
+        d.update(pulse_indicator=pulse["pulse_indicator"], tp=pulse["tp"],
+                 pulse_like=pulse["pulse_like"], pulse_class=pulse["classification"])
         out.append(d)
     return out
 

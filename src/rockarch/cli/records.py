@@ -39,7 +39,8 @@ def info(
     json_out: bool = JSON_OPT,
 ) -> None:
     """Each record's event, station, component, dt, duration and intensity measures (PGA,
-    PGV, PGD, Arias, D5-95, Tm, Sa(T)); SI units in --json."""
+    PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
+    in --json."""
     per = float_list("--periods", periods)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results)
@@ -54,14 +55,15 @@ def info(
         typer.echo(f"note: {note}")
     typer.echo(f"{'record':40s} {'event':22s} {'station':26s} {'comp':>5s} {'dt':>6s} "
                f"{'dur':>6s} {'PGA[g]':>7s} {'PGV':>6s} {'PGD':>6s} {'Ia':>6s} "
-               f"{'D5-95':>6s} {'Tm':>5s}")
+               f"{'D5-95':>6s} {'Tm':>5s} {'pulse':>10s} {'Tp':>5s}")
     for r in rows:
         typer.echo(f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
                    f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
                    f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
                    f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
-                   f"{r['tm']:5.2f}")
-    typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s; Sa(T) in --json")
+                   f"{r['tm']:5.2f} {r['pulse_class']:>10s} {r['tp']:5.2f}")
+    typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s (Baker 2007 pulse "
+               "period); Sa(T) in --json")
 
 
 @records_app.command("synth", short_help="Write a seeded synthetic suite of .AT2 records.")
