@@ -32,7 +32,7 @@ from rockarch.motion import GroundMotion
 
 #: Number of wavelets summed into the pulse (Baker 2007).
 N_WAVELETS = 10
-#: Logistic coefficients of the pulse indicator (Baker 2007, Eq. 7).
+#: Logistic coefficients of the pulse indicator (Baker 2007).
 PI_COEF = (-23.3, 14.6, 20.5)
 #: Thresholds: pulse-like above, non-pulse below (between: ambiguous).
 PI_PULSE, PI_NO_PULSE = 0.85, 0.15
