@@ -55,6 +55,21 @@ def test_recurrence_coefficients_equal_nigam_jennings_closed_form():
     np.testing.assert_allclose(coef[4], -(1 - e * (c + q * s)) / w**2, rtol=1e-9)
 
 
+@pytest.mark.parametrize("zeta", [0.0, 0.05, 0.5])
+def test_recurrence_coefficients_equal_the_matrix_exponential(zeta):
+    # independent route: exp(K h) of the augmented state [u, u', a_g, a_g'] (theory Eq. 11.6)
+    from scipy.linalg import expm
+
+    w, h = 2 * math.pi / 0.3, 0.002
+    k = np.array([[0, 1, 0, 0], [-w * w, -2 * zeta * w, -1, 0], [0, 0, 0, 1], [0, 0, 0, 0]])
+    phi = expm(k * h)
+    ref = [phi[0, 0], phi[0, 1], phi[1, 0], phi[1, 1], phi[0, 2], phi[1, 2],
+           phi[0, 3] / h, phi[1, 3] / h]
+    scale = np.array([1, h, w * w * h, 1, h * h, h, h * h, h])  # size of each coefficient
+    np.testing.assert_allclose(im._oscillator_coefficients(w, zeta, h) / scale,
+                               np.array(ref) / scale, rtol=0, atol=1e-9)
+
+
 def test_sa_tends_to_pga_for_a_rigid_oscillator():
     # T = 0.01 s is 4x shorter than the shortest period the PEER filter keeps (25 Hz
     # corner): the oscillator follows the ground, Sa = PGA within 1 %

@@ -26,7 +26,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import signal
+from scipy import fft
 
 from rockarch.motion import GroundMotion
 
@@ -92,10 +92,11 @@ def _wavelet(x, psi, scale: float, dt: float) -> np.ndarray:
     return w / math.sqrt(np.sum(w * w) * dt)
 
 
-def _best(v: np.ndarray, w: np.ndarray, dt: float) -> tuple[float, int]:
-    """Largest |projection| of v on the shifted wavelet and its start index (may be < 0:
-    a wavelet partly before the record)."""
-    c = signal.correlate(v, w, mode="full", method="auto") * dt
+def _best(v_hat: np.ndarray, n: int, w: np.ndarray, dt: float, nfft: int
+          ) -> tuple[float, int]:
+    """Largest |projection| of v (its rfft ``v_hat`` of length ``nfft``, n samples) on the
+    shifted wavelet, and the wavelet's start index (< 0: partly before the record)."""
+    c = np.fft.irfft(v_hat * np.fft.rfft(w[::-1], nfft), nfft)[:n + w.size - 1] * dt
     j = int(np.argmax(np.abs(c)))
     return float(c[j]), j - (w.size - 1)
 
@@ -128,10 +129,14 @@ def baker_pulse(motion: GroundMotion, *, tp_min: float = 0.2, tp_max: float = 15
     if not 0 < tp_min < hi:
         raise ValueError(f"pulse periods {tp_min:g}…{tp_max:g} s do not fit a record of "
                          f"{duration:g} s")
+    # one FFT length serves every scale: linear (not circular) correlation up to the
+    # longest wavelet
+    nfft = fft.next_fast_len(v.size + int(x[-1] * hi * fc / dt) + 1)
+    v_hat = np.fft.rfft(v, nfft)
     best = (0.0, 0, 0.0)
     for tp in np.geomspace(tp_min, hi, int(n_periods)):
         scale = tp * fc  # a wavelet of time scale s has pseudo-period s / fc
-        c, start = _best(v, _wavelet(x, psi, scale, dt), dt)
+        c, start = _best(v_hat, v.size, _wavelet(x, psi, scale, dt), dt, nfft)
         if abs(c) > abs(best[0]):
             best = (c, start, scale)
     scale = best[2]
@@ -139,7 +144,7 @@ def baker_pulse(motion: GroundMotion, *, tp_min: float = 0.2, tp_max: float = 15
     residual = v.copy()
     pulse = np.zeros_like(v)
     for _ in range(int(n_wavelets)):
-        c, start = _best(residual, w, dt)
+        c, start = _best(np.fft.rfft(residual, nfft), v.size, w, dt, nfft)
         _add(pulse, w, start, c)
         _add(residual, w, start, -c)
     pgv = float(np.max(np.abs(v)))
