@@ -108,8 +108,14 @@ def test_two_column_records_in_a_folder_and_a_file_list(tmp_path):
     assert s.names == ["a.txt", "b.dat"]
     assert s[1].motion.pga == pytest.approx(0.2 * G_STANDARD, rel=1e-3)
     assert suite.read_suite([tmp_path / "b.dat"], units="g").names == ["b.dat"]
+    assert not s.notes
+    # a PGA of 0.1 read as cm/s² is 1.02e-4 g (plausible); 0.02 cm/s² is 2e-5 g: a note
+    np.savetxt(tmp_path / "c.txt", np.c_[t, 0.02 * np.sin(2 * np.pi * t)])
+    tiny = suite.read_suite([tmp_path / "a.txt", tmp_path / "c.txt"], units="cm/s2")
+    assert [n.split(":")[0] for n in tiny.notes] == ["c.txt"]
+    assert "not plausible" in tiny.notes[0]
     # site-oas reads folders through the same expansion
-    assert [p.name for p in site.record_paths([tmp_path])] == ["a.txt", "b.dat"]
+    assert [p.name for p in site.record_paths([tmp_path])] == ["a.txt", "b.dat", "c.txt"]
 
 
 def test_bad_sources_give_one_clear_error(tmp_path):
@@ -129,7 +135,8 @@ def test_records_info_json_lists_metadata_and_intensity_measures(folder_csv):
     assert names == ["RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "RSN6_IMPVALL.I_I-ELC270-hor2.AT2"]
     r = out["records"][0]
     for key in ("event", "station", "component", "dt", "duration", "pga", "pgv", "pgd",
-                "arias", "d5_95", "tm", "sa", "magnitude", "rrup", "vs30", "scale_factor"):
+                "arias", "d5_95", "tm", "sa", "magnitude", "rrup", "vs30", "scale_factor",
+                "pulse_indicator", "tp", "pulse_like", "pulse_class"):
         assert key in r
     assert r["pga"] == pytest.approx(1.5 * 0.281 * G_STANDARD, rel=2e-3)  # PEER 0.281 g × 1.5
     assert len(r["sa"]) == 2

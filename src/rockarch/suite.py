@@ -323,6 +323,10 @@ def _header_fields(motion: GroundMotion) -> dict:
             "station": ", ".join(parts[2:-1]) or None, "component": parts[-1] or None}
 
 
+#: A record whose PGA lies outside this range [m/s²] has its units wrong (as in site-oas).
+PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
+
+
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                search_results: str | Path | None = None) -> Suite:
     """Read a suite from files and folders (see :func:`record_files`).
@@ -341,7 +345,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
 
     Records without a csv row keep the metadata of their ``.AT2`` header; with
     ``apply_scale`` and a csv, a record missing from the csv is an error (its scale is
-    unknown).
+    unknown). A record missing from the csv or with an implausible PGA (outside
+    :data:`PGA_RANGE`: wrong units?) is listed in ``notes``.
     """
     files, metas = record_files(sources)
     if search_results is not None:
@@ -374,6 +379,10 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
             fields["rsn"] = int(m.group(1))
         rec = SuiteRecord(name=f.name, motion=motion, path=str(f), **fields)
         records.append(rec)
+        lo, hi = PGA_RANGE
+        if not lo <= motion.pga <= hi:
+            notes.append(f"{f.name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
+                         "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
     suite = Suite(tuple(records), csv=str(metas[0]) if metas else None, notes=tuple(notes))
     return suite.scaled() if apply_scale else suite
 
