@@ -7,8 +7,8 @@ analysis. BSSA 97(5), 1486–1501. The method (docs/theory.md Eqs. (11.12)–(11
    the scale of the largest |coefficient| fixes the pulse period Tp (the pseudo-period of
    the wavelet, the period of its largest Fourier amplitude);
 2. the pulse is the sum of 10 wavelets of that scale, each the largest projection on the
-   residual left by the previous ones (our reading of Baker's extraction of the largest
-   coefficients; no restriction on their signs);
+   residual left by the previous ones, sought within ±0.4·s of the first one's position
+   (s the wavelet's time scale; the search window of the Shahi & Baker code): one pulse;
 3. PI = 1 / (1 + exp(−23.3 + 14.6 PGV_ratio + 20.5 energy_ratio)), with the ratios of the
    residual's PGV and ∫v² to the original's; a record is pulse-like if PI > 0.85, the
    pulse is not late (it reaches 10 % of its ∫v² before the record reaches 20 % of its
@@ -32,6 +32,9 @@ from rockarch.motion import GroundMotion
 
 #: Number of wavelets summed into the pulse (Baker 2007).
 N_WAVELETS = 10
+#: The wavelets after the first are sought within ± WINDOW·s of its position (s its time
+#: scale), the search window of the Shahi & Baker code: the pulse stays one local feature.
+WINDOW = 0.4
 #: Logistic coefficients of the pulse indicator (Baker 2007).
 PI_COEF = (-23.3, 14.6, 20.5)
 #: Thresholds: pulse-like above, non-pulse below (between: ambiguous).
@@ -92,12 +95,17 @@ def _wavelet(x, psi, scale: float, dt: float) -> np.ndarray:
     return w / math.sqrt(np.sum(w * w) * dt)
 
 
-def _best(v_hat: np.ndarray, n: int, w: np.ndarray, dt: float, nfft: int
-          ) -> tuple[float, int]:
+def _best(v_hat: np.ndarray, n: int, w: np.ndarray, dt: float, nfft: int,
+          near: tuple[int, int] | None = None) -> tuple[float, int]:
     """Largest |projection| of v (its rfft ``v_hat`` of length ``nfft``, n samples) on the
-    shifted wavelet, and the wavelet's start index (< 0: partly before the record)."""
+    shifted wavelet, and the wavelet's start index (< 0: partly before the record);
+    ``near = (start, half)`` limits the search to starts within ``half`` samples."""
     c = np.fft.irfft(v_hat * np.fft.rfft(w[::-1], nfft), nfft)[:n + w.size - 1] * dt
-    j = int(np.argmax(np.abs(c)))
+    lo, hi = 0, c.size
+    if near is not None:
+        lo = max(near[0] - near[1] + w.size - 1, 0)
+        hi = min(near[0] + near[1] + w.size, c.size)
+    j = lo + int(np.argmax(np.abs(c[lo:hi])))
     return float(c[j]), j - (w.size - 1)
 
 
@@ -143,8 +151,9 @@ def baker_pulse(motion: GroundMotion, *, tp_min: float = 0.2, tp_max: float = 15
     w = _wavelet(x, psi, scale, dt)
     residual = v.copy()
     pulse = np.zeros_like(v)
+    near = (best[1], int(math.ceil(WINDOW * scale / dt)))
     for _ in range(int(n_wavelets)):
-        c, start = _best(np.fft.rfft(residual, nfft), v.size, w, dt, nfft)
+        c, start = _best(np.fft.rfft(residual, nfft), v.size, w, dt, nfft, near)
         _add(pulse, w, start, c)
         _add(residual, w, start, -c)
     pgv = float(np.max(np.abs(v)))
