@@ -157,3 +157,24 @@ def test_shared_records_match_their_readme_pgas():
              "RSN1690_NORTH151_SYL360-hor2.AT2": 0.062}
     for name, value in table.items():
         assert pga_g[name] == pytest.approx(value, abs=5e-4)  # README rounds to 1e-3 g
+
+
+def test_vertical_components_are_left_out_unless_asked(folder_csv):
+    # a PEER vertical file: listed in the csv's "Vertical Acc. Filename" column
+    shutil.copy(bundled_record_path(270), folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2")
+    s = suite.read_suite(folder_csv)
+    assert "RSN6_IMPVALL.I_I-ELCUP.AT2" not in s.names and len(s) == 2
+    assert any("vertical component left out" in n for n in s.notes)
+    assert len(suite.read_suite(folder_csv, vertical=True)) == 3
+    only = suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], vertical=True)
+    assert only[0].component == "270"  # the header's component (this is a copy of 270)
+    with pytest.raises(ValueError, match="every record is a vertical component"):
+        suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], search_results=FIXTURE)
+
+
+def test_vertical_component_from_the_at2_header(tmp_path):
+    text = bundled_record_path(180).read_text(encoding="latin-1").splitlines()
+    text[1] = "Imperial Valley-02, 5/19/1940, El Centro Array #9, UP"
+    (tmp_path / "v.AT2").write_text("\n".join(text) + "\n", encoding="latin-1")
+    shutil.copy(bundled_record_path(180), tmp_path)
+    assert suite.read_suite(tmp_path).names == ["RSN6_IMPVALL.I_I-ELC180-hor1.AT2"]

@@ -327,8 +327,12 @@ def _header_fields(motion: GroundMotion) -> dict:
 PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 
+#: Component names (AT2 header, lower case) of vertical records.
+VERTICAL = ("up", "dwn", "dn", "down", "v", "ver", "vert", "vertical", "z")
+
+
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
-               search_results: str | Path | None = None) -> Suite:
+               search_results: str | Path | None = None, vertical: bool = False) -> Suite:
     """Read a suite from files and folders (see :func:`record_files`).
 
     Parameters
@@ -342,6 +346,10 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     search_results : path, optional
         The NGA-West2 metadata csv; by default the ``_SearchResults.csv`` found in a folder
         given in ``sources`` (at most one).
+    vertical : bool
+        Keep vertical components (csv component V, or an ``.AT2`` header component such as
+        ``UP``); by default they are left out and listed in ``notes`` (rocking structures
+        are assessed under horizontal ground motion).
 
     Records without a csv row keep the metadata of their ``.AT2`` header; with
     ``apply_scale`` and a csv, a record missing from the csv is an error (its scale is
@@ -374,6 +382,10 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                 raise ValueError(f"{f.name}: not listed in {metas[0].name} (no RSN match), so "
                                  "its scale factor is unknown")
             notes.append(f"{f.name}: not listed in {metas[0].name}")
+        if not vertical and (comp == "V" or str(fields.get("component", "")).strip().lower()
+                             in VERTICAL):
+            notes.append(f"{f.name}: vertical component left out (--vertical keeps it)")
+            continue
         m = _RSN_NAME.match(f.name)
         if "rsn" not in fields and m:
             fields["rsn"] = int(m.group(1))
@@ -383,6 +395,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         if not lo <= motion.pga <= hi:
             notes.append(f"{f.name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
                          "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
+    if not records:
+        raise ValueError("every record is a vertical component: give --vertical to use them")
     suite = Suite(tuple(records), csv=str(metas[0]) if metas else None, notes=tuple(notes))
     return suite.scaled() if apply_scale else suite
 

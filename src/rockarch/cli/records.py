@@ -33,6 +33,8 @@ def info(
     units: str = UNITS_OPT,
     apply_scale: bool = APPLY_SCALE_OPT,
     search_results: Path = SEARCH_RESULTS_OPT,
+    vertical: bool = typer.Option(False, "--vertical", help="Keep vertical components "
+                                  "(left out by default)."),
     periods: str = typer.Option(",".join(f"{p:g}" for p in intensity.PERIODS),
                                 help="Periods of Sa(T) [s], comma-separated."),
     damping: float = typer.Option(intensity.DAMPING, help="Damping ratio of Sa(T)."),
@@ -43,7 +45,7 @@ def info(
     in --json."""
     per = float_list("--periods", periods)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
-                       search_results=search_results)
+                       search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),
