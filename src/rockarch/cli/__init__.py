@@ -9,6 +9,7 @@ they compose nothing themselves.
 from rockarch.cli import (  # noqa: F401 - importing a module registers its commands
     archcmd,
     oas,
+    records,
     reproduce,
     simulate,
     site,
