@@ -96,16 +96,16 @@ def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) 
         if period is not None:
             raise ValueError("--period is for --im sa only")
         return 1.0
+    if im == "pgv" and period is not None:
+        raise ValueError("--period is for --im sa only")
+    if im == "sa" and period is None:
+        raise ValueError("--im sa needs --period T (seconds)")
+    if im == "sa" and not (math.isfinite(period) and period > 0):
+        raise ValueError(f"--period must be a finite number > 0, got {period}")
     from rockarch import intensity
 
     if im == "pgv":
-        if period is not None:
-            raise ValueError("--period is for --im sa only")
         return float(intensity.pgv(motion)) / motion.pga
-    if period is None:
-        raise ValueError("--im sa needs --period T (seconds)")
-    if not (math.isfinite(period) and period > 0):
-        raise ValueError(f"--period must be a finite number > 0, got {period}")
     return float(np.ravel(intensity.sa(motion, [period]))[0]) / motion.pga
 
 
@@ -388,6 +388,11 @@ def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float =
     """Lognormal fit (censored records included) and bootstrap band of an IDA."""
     x = result.im_collapse[~result.censored]
     c = result.im_limit[result.censored]
+    if np.unique(x).size < 2:
+        raise ValueError(f"only {x.size} of {len(result.records)} records collapse up to "
+                         f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least two "
+                         "different collapse points (raise the scan limit, e.g. "
+                         "--ratio-max 10)")
     fit = fit_lognormal(x, c)
     ci = {} if n_bootstrap == 0 else bootstrap(x, c, n=n_bootstrap, level=level,
                                                im_grid=im_grid, seed=seed)
