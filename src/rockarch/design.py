@@ -36,7 +36,7 @@ class DesignResult:
     def chosen(self):
         return self.replacement.by_rule(self.rule)
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         """The CLI's JSON contract."""
         c = self.chosen
         return {"replacement": {"thickness": c.thickness, "p": c.p, "ap_min": c.ap_min},

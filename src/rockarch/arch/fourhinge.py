@@ -29,7 +29,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from rockarch._validate import positive
-from rockarch.arch.geometry import Arch, Voussoirs
+from rockarch.arch.cutting import Voussoirs
+from rockarch.arch.geometry import Arch
 from rockarch.arch.thrust import Hinge, ThrustResult, limit_analysis
 from rockarch.constants import G
 
@@ -322,11 +323,11 @@ class ArchMechanism:
     def hinges(self) -> tuple[Hinge, ...]:
         return self.thrust.hinges
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         """The CLI's JSON contract (joint is None for the continuous mechanism)."""
         return {"ap_min": self.ap_min, "lambda": self.lambda_, "p": self.p,
                 "delta": self.delta, "Bv": self.Bv, "Bh": self.Bh, "A": self.A,
-                "hinges": [h.as_dict(joint=not self.continuous) for h in self.hinges],
+                "hinges": [h.to_dict(joint=not self.continuous) for h in self.hinges],
                 "c1": self.c1, "c2": self.c2, "c3": self.c3, "c3p": self.c3p, "c4": self.c4}
 
 

@@ -24,16 +24,12 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.spatial import cKDTree
 
 from rockarch._validate import positive
+from rockarch.arch.cutting import voussoirs
 from rockarch.arch.fourhinge import ArchMechanism, analyse
-from rockarch.arch.geometry import (
-    CONTINUOUS_BLOCKS,
-    Arch,
-    HorizontalWeights,
-    mass_per_horizontal_length,
-    voussoirs,
-    weighted_catenary,
-)
+from rockarch.arch.funicular import mass_per_horizontal_length, weighted_catenary
+from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch
 from rockarch.arch.thrust import limit_analysis
+from rockarch.arch.weights import HorizontalWeights
 from rockarch.constants import G
 
 RULES = ("lower-bound", "equivalent")
@@ -71,7 +67,7 @@ class ReplacementArch:
         """Half-diagonal of the equivalent slender block, R = 0.75·g/p² (Eq. 1) [m]."""
         return 0.75 * self.mechanism.thrust.g / self.p**2
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         m = self.mechanism
         return {"rule": self.rule, "thickness": self.thickness, "rise": self.rise,
                 "span": self.arch.span, "p": m.p, "ap_min": m.ap_min, "delta": m.delta,

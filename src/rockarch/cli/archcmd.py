@@ -73,7 +73,7 @@ def arch(
 
         plot_mechanism(res, plot)
     if json_out:
-        print_json(res.as_dict())
+        print_json(res.to_dict())
         return
     lines = [
         f"{shape.value} arch: l = {span:g} m, f = {rise:g} m, d = {thickness:g} m, "

@@ -37,7 +37,7 @@ from rockarch.cli._common import (
     ratio_grid,
     value,
 )
-from rockarch.sweep import open_sweep
+from rockarch.cli._sweep import open_sweep
 from rockarch.systems import system as make_system
 
 

@@ -30,8 +30,8 @@ from rockarch.cli._common import (
     print_json,
     ratio_grid,
 )
+from rockarch.cli._sweep import open_sweep
 from rockarch.design import design_check
-from rockarch.sweep import open_sweep
 
 
 @app.command("site-oas", short_help="Site OAS of a set of records: envelope and percentile.")
@@ -126,7 +126,7 @@ def design(
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
     if json_out:
-        print_json(res.as_dict())
+        print_json(res.to_dict())
         return
     c = res.chosen
     typer.echo(f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = {thickness:g} m: "

@@ -1,4 +1,4 @@
-"""Simulation of MDOF assemblies (Moreau–Jean, see :mod:`rockarch.mdof.kernels`)."""
+"""Simulation of MDOF assemblies (Moreau–Jean, see :mod:`rockarch.mdof.chain_stepper`)."""
 
 from __future__ import annotations
 
@@ -10,8 +10,9 @@ import numpy as np
 from rockarch._validate import in_range
 from rockarch.constants import GAP_TOL, T_FREE
 from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
-from rockarch.mdof import kernels as _k
+from rockarch.mdof import chain_stepper as _k
 from rockarch.mdof.assembly import Assembly
+from rockarch.mdof.kernel_data import chain_model
 from rockarch.motion import GroundMotion
 from rockarch.response import Batch, Response, run_batch
 
@@ -90,10 +91,11 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     nb_, nj = assembly.n_blocks, assembly.n_joints
     out_t, out_q = np.zeros(cap), np.zeros((cap, nb_, 3))
     out_s, out_e = np.zeros((cap, nj), dtype=np.int8), np.zeros(cap)
-    mass, ine, c0, rl, rr, n0, tmin = assembly.kernel_args()
+    model = chain_model(assembly)
+    c0 = model.c0
     st, tc, mx, imp, nopen, n_rec, steps, fails = _k.run(
-        mass, ine, c0, rl, rr, n0, scale, tk, ak, 1.0, assembly.g, h, t_end, duration,
-        gap_tol, tmin, assembly.delta_ref, rec, out_t, out_q, out_s, out_e)
+        model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t, out_q, out_s,
+        out_e)
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
     q0[0, :, :2] = c0 * scale
@@ -123,14 +125,13 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
     pr = assembly.p_ref if p_ref is None else float(p_ref)
     unit = motion.normalized()
     tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)
-    mass, ine, c0, rl, rr, n0, tmin = assembly.kernel_args()
+    model = chain_model(assembly)
 
     def run(pf, rf):
         scales = (pr / pf) ** 2
         hs = h_factor / (assembly.p_ref / np.sqrt(scales))
         return _k.run_batch(
-            mass, ine, c0, rl, rr, n0, scales, tk, ak, np.ascontiguousarray(rf * ap),
-            assembly.g, hs, float(unit.duration + t_free), float(unit.duration), gap_tol,
-            tmin, assembly.delta_ref)
+            model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
+            float(unit.duration + t_free), float(unit.duration), gap_tol)
 
     return run_batch(p, ratio, run, extras=("open_joints_max", "lcp_failures"))
