@@ -6,12 +6,12 @@ record's boundary without simulating it (docs/theory.md Sect. 11.2):
 - **normalised**: each record's boundary b_k(p) is read as a function of x = p·Tm_k (its
   mean period, Rathje et al.), over which the boundaries of different records collapse
   (the similarity of Dimitrakopoulos & DeJong 2012); the site curve is a percentile over
-  the records, Eq. (11.14), read at p·Tm of the site (the geometric mean of the records').
+  the records, Eq. (11.26), read at p·Tm of the site (the geometric mean of the records').
 - **simplified**: two durations of the record's strongest impulse, t_I (impulse) and t_M
-  (first moment of the impulse), Eqs. (11.8)–(11.10), give three branches of ap/ap,min
-  over p, Eq. (11.13): 1 (no uplift), the rectangular-pulse closed form
-  1/(1 − e^(−p t_I)) ~ 1/(p t_I) (overturning without impact, Eq. (11.11)) and
-  C (cos α)/(p t_M)² (overturning after impact, Eq. (11.12)).
+  (first moment of the impulse), Eqs. (11.20)–(11.22), give three branches of ap/ap,min
+  over p, Eq. (11.25): 1 (no uplift), the rectangular-pulse closed form
+  1/(1 − e^(−p t_I)) ~ 1/(p t_I) (overturning without impact, Eq. (11.23)) and
+  C (cos α)/(p t_M)² (overturning after impact, Eq. (11.24)).
 
 :func:`characteristic` adds both to a site OAS (:func:`rockarch.site.site_oas`) and
 :func:`skill` measures how well each predicts the computed boundaries.
@@ -27,7 +27,7 @@ import xarray as xr
 
 from rockarch.motion import GroundMotion
 
-#: Constant of the after-impact branch, Eq. (11.12): the base moves by the half-width
+#: Constant of the after-impact branch, Eq. (11.24): the base moves by the half-width
 #: R·sin(alpha) under a centre of mass at rest, R = 3g/(4p²): (3/4)(ap,min/p²)cos(alpha)
 #: = A t_M²/2 with A = ratio·ap,min.
 IMPACT_COEFF = 1.5
@@ -52,18 +52,18 @@ class PulseDurations:
 
     @property
     def t_impulse(self) -> float:
-        """t_I = I / PGA [s]: a rectangle of height PGA with the same impulse, Eq. (11.9)."""
+        """t_I = I / PGA [s]: a rectangle of height PGA with the same impulse, Eq. (11.21)."""
         return self.impulse / self.pga
 
     @property
     def t_moment(self) -> float:
         """t_M = sqrt(2 M / PGA) [s]: a rectangle of height PGA with the same first
-        moment, Eq. (11.10)."""
+        moment, Eq. (11.22)."""
         return math.sqrt(2.0 * self.moment / self.pga)
 
 
 def pulse_durations(motion: GroundMotion) -> PulseDurations:
-    """t_I and t_M of a record (docs/theory.md Eqs. (11.8)–(11.10)).
+    """t_I and t_M of a record (docs/theory.md Eqs. (11.20)–(11.22)).
 
     The ground velocity from rest is integrated exactly at the knots (a_g is linear between
     them); the strongest impulse is the pair t_start < t_end with the largest |Δv| (a
@@ -89,7 +89,7 @@ def pulse_durations(motion: GroundMotion) -> PulseDurations:
 
 def rectangular_pulse_boundary(p, duration) -> np.ndarray:
     """Lowest ap/ap,min that overturns a slender block without impact under a rectangular
-    pulse of that duration: 1/(1 − e^(−p·t)) (linearised rocking, Eq. (11.11))."""
+    pulse of that duration: 1/(1 − e^(−p·t)) (linearised rocking, Eq. (11.23))."""
     x = np.asarray(p, dtype=float) * duration
     with np.errstate(divide="ignore"):
         return 1.0 / -np.expm1(-x)
@@ -97,7 +97,7 @@ def rectangular_pulse_boundary(p, duration) -> np.ndarray:
 
 def simplified_boundary(p, t_impulse: float, t_moment: float, alpha: float = 0.0
                         ) -> np.ndarray:
-    """The simplified OAS of a record, Eq. (11.13): max(1, min(1/(1 − e^(−p t_I)),
+    """The simplified OAS of a record, Eq. (11.25): max(1, min(1/(1 − e^(−p t_I)),
     C cos(alpha)/(p t_M)²)); the easier of the two overturning modes, never below 1."""
     p = np.asarray(p, dtype=float)
     no_impact = rectangular_pulse_boundary(p, t_impulse)
@@ -122,7 +122,7 @@ def _log_interp(x_new, x, y) -> np.ndarray:
 
 
 def normalised_curve(boundary, p, scale, percentile: float = 50.0, n: int = 120):
-    """The site's normalised OAS, Eq. (11.14): on a geometric grid of x = p·scale, the
+    """The site's normalised OAS, Eq. (11.26): on a geometric grid of x = p·scale, the
     ``percentile`` over records of b_k(x/scale_k) (records whose p range does not reach x
     are left out there; a record without overturning counts as +inf).
 

@@ -7,12 +7,12 @@ Sect. 11.3):
 - the scan is the OAS scan of :mod:`rockarch.spectra` on one p: a grid of ratios
   ap/ap,min, then bisection between the last safe grid value below the first collapse and
   that collapse, with the same code (so the IDA collapse point of a record *is* its OAS
-  boundary at p times ap,min, Eq. (11.5));
+  boundary at p times ap,min, Eq. (11.30));
 - safe grid values above the first collapse ("resurrections", safe islands of the record)
   are counted and reported, never filled in;
 - a record that never collapses up to the scan limit is a right-censored datum;
 - the collapse intensities are fitted by a lognormal distribution by maximum likelihood,
-  censored records included (Eq. (11.6)), with a bootstrap confidence band over records.
+  censored records included (Eq. (11.31)), with a bootstrap confidence band over records.
 
 The simulations run as chunks of records on the sweep executor (in-process, local
 processes or Dask) and may be kept in the resumable store (:mod:`rockarch.sweep`).
@@ -111,7 +111,7 @@ def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) 
 
 @dataclass(frozen=True)
 class IDAResult:
-    """Collapse points of the records of a suite (docs/theory.md Eq. (11.5)).
+    """Collapse points of the records of a suite (docs/theory.md Eq. (11.30)).
 
     Attributes
     ----------
@@ -228,7 +228,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
 
 @dataclass(frozen=True)
 class LognormalFit:
-    """A lognormal fragility P(collapse | IM = x) = Φ(ln(x/θ)/β) (Eq. (11.6)).
+    """A lognormal fragility P(collapse | IM = x) = Φ(ln(x/θ)/β) (Eq. (11.31)).
 
     ``median`` θ and ``beta`` β maximise the likelihood of the collapse points and of the
     censored records (survivors up to their scan limit).
@@ -278,7 +278,7 @@ def fit_lognormal(collapse, censored_at=()) -> LognormalFit:
     censored_at : intensities up to which the other records survived (> 0).
 
     Without censored records the estimate is closed form (mean and standard deviation,
-    ddof 0, of ln x); with them the likelihood Eq. (11.6) is maximised numerically
+    ddof 0, of ln x); with them the likelihood Eq. (11.31) is maximised numerically
     (scipy.optimize, from the closed-form start).
     """
     lx = np.log(_positive_values("collapse intensities", collapse))
