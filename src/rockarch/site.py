@@ -33,22 +33,11 @@ PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 
 def record_paths(paths) -> list[Path]:
-    """Expand files and folders (every ``*.AT2`` inside, sorted) into record files."""
-    out: list[Path] = []
-    for p in paths:
-        p = Path(p)
-        if p.is_dir():
-            found = sorted(q for q in p.iterdir() if q.suffix.lower() == ".at2")
-            if not found:
-                raise ValueError(f"{p}: folder holds no .AT2 record")
-            out.extend(found)
-        elif p.exists():
-            out.append(p)
-        else:
-            raise ValueError(f"{p}: no such file or folder")
-    if not out:
-        raise ValueError("give at least one record (file or folder of .AT2)")
-    return out
+    """Expand files and folders (``.AT2`` and two-column records inside, sorted) into record
+    files: :func:`rockarch.suite.record_files` (a ``_SearchResults.csv`` is skipped)."""
+    from rockarch.suite import record_files
+
+    return record_files(paths)[0]
 
 
 def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], list[str]]:

@@ -10,6 +10,7 @@ from rockarch.cli import (  # noqa: F401 - importing a module registers its comm
     archcmd,
     fragility,
     oas,
+    records,
     reproduce,
     simulate,
     site,
