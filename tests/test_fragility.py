@@ -125,3 +125,16 @@ def test_im_choices():
         fr.im_per_unit_pga(m, "pgd")
     with pytest.raises(ValueError, match="needs --period"):
         fr.im_per_unit_pga(m, "sa")
+
+
+@pytest.mark.parametrize("im, period", [("pgv", None), ("sa", 0.5)])
+def test_im_collapse_is_the_im_of_the_record_scaled_to_collapse(records, im, period):
+    from rockarch.intensity import im_value
+
+    sys_ = ra.system("block", alpha=0.2, t_free=3.0)
+    res = fr.ida(sys_, records[:1], 2.0, ratio=RATIO, im=im, period=period)
+    m = records[0]
+    scaled = m.scaled(res.ratio_collapse[0] * sys_.ap_min / m.pga)
+    # IMs are linear in the scale: equal up to round-off
+    assert res.im_collapse[0] == pytest.approx(im_value(scaled, im, period=period),
+                                               rel=1e-12)

@@ -75,4 +75,4 @@ def test_too_few_collapses_is_one_line(folder):
 def test_empty_folder(tmp_path):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
                               str(tmp_path), "--no-store"])
-    assert res.exit_code == 2 and "holds no .AT2 record" in res.stderr
+    assert res.exit_code == 2 and "holds no record" in res.stderr

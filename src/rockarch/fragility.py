@@ -102,11 +102,9 @@ def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) 
         raise ValueError("--im sa needs --period T (seconds)")
     if im == "sa" and not (math.isfinite(period) and period > 0):
         raise ValueError(f"--period must be a finite number > 0, got {period}")
-    from rockarch import intensity
+    from rockarch.intensity import im_value
 
-    if im == "pgv":
-        return float(intensity.pgv(motion)) / motion.pga
-    return float(np.ravel(intensity.sa(motion, [period]))[0]) / motion.pga
+    return im_value(motion, im, period=period) / motion.pga
 
 
 @dataclass(frozen=True)

@@ -10,11 +10,11 @@ import numpy as np
 import typer
 
 from rockarch import fragility as fr
-from rockarch import site as site_mod
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import Shape, System, echo_err, guarded, value
-from rockarch.sweep import open_sweep
+from rockarch.cli._sweep import open_sweep
+from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
 
 
@@ -85,15 +85,12 @@ def fragility(
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     rng = im_range_si(im_range, im)
     cc.check_outputs(plot)
-    paths = site_mod.record_paths(records)
-    motions, _ = site_mod.load_records(paths, units)
-    for m in motions:  # fail early on --period (before any simulation)
-        fr.im_per_unit_pga(m, im, period)
-        break
+    suite = read_suite(records, units=units)
+    motions = suite.motions
     with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
                     store_dir=store, no_store=no_store, n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
-        res = fr.ida(sysobj, motions, p, names=[q.name for q in paths], im=im,
+        res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
                      period=period, ratio=ratios, tol=tol,
                      progress=progress and sys.stderr.isatty(), executor=executor,
                      store=chunk_store)
