@@ -62,3 +62,32 @@ def test_normalised_curve_collapses_similar_records():
     inside = (x >= p[0] * tm.max()) & (x <= p[-1] * tm.min())
     # log-log interpolation of a smooth function on 30 points per decade-and-a-bit
     assert curve[inside] == pytest.approx(f(x[inside]), rel=2e-3)
+
+
+def test_characteristic_and_skill_on_a_small_site():
+    from rockarch import site
+    from rockarch.intensity import mean_period
+
+    motions = [ra.GroundMotion(m.t[:1500], m.a[:1500], m.name)
+               for m in (ra.el_centro(180), ra.el_centro(270))]
+    p = np.geomspace(1.0, 8.0, 6)
+    ds = site.site_oas(motions, p, np.round(np.linspace(1, 5, 17), 12), t_free=3.0,
+                       progress=False, tol=1e-2)
+    out = cs.characteristic(ds, motions)
+    assert out["tm"].values == pytest.approx([mean_period(m) for m in motions])
+    d = cs.pulse_durations(motions[1])
+    assert out["t_impulse"].values[1] == d.t_impulse
+    assert np.array_equal(out["simplified_record"].values[1],
+                          cs.simplified_boundary(p, d.t_impulse, d.t_moment, 0.05))
+    # the site curves are percentiles over records: between the records' lowest and highest
+    for name in ("simplified",):
+        vals = out[name].values
+        rec = out["simplified_record"].values
+        assert np.all((rec.min(axis=0) <= vals) & (vals <= rec.max(axis=0)))
+    assert np.isfinite(out["normalised"].values).any()
+    sk = cs.skill(out)
+    assert sk["pairs"] + sk["censored_pairs"] == 12
+    for name in ("raw", "normalised", "simplified"):
+        assert 0 <= sk[name]["safe"] <= 1 and sk[name]["dispersion"] >= 0
+    with pytest.raises(ValueError, match="has 2 records"):
+        cs.characteristic(ds, motions[:1])

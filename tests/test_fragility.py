@@ -138,3 +138,15 @@ def test_im_collapse_is_the_im_of_the_record_scaled_to_collapse(records, im, per
     # IMs are linear in the scale: equal up to round-off
     assert res.im_collapse[0] == pytest.approx(im_value(scaled, im, period=period),
                                                rel=1e-12)
+
+
+def test_site_fragility_is_in_units_of_the_structures_ap_min(records):
+    frag = fr.site_fragility(records, 2.0, ap_min=3.0, ratio=RATIO, t_free=3.0,
+                             n_bootstrap=20)
+    block = fr.ida(ra.system("block", alpha=0.05, t_free=3.0), records, 2.0, ratio=RATIO)
+    assert np.array_equal(frag.ida.im_collapse, block.ratio_collapse * 3.0)
+    s = fr.design_summary(frag, pga=frag.fit.median, probability=0.5)
+    assert s["probability_at_pga"]["probability"] == pytest.approx(0.5)
+    assert s["pga_at_probability"]["pga"] == pytest.approx(frag.fit.median)
+    with pytest.raises(ValueError, match="--pga"):
+        fr.design_summary(frag, pga=-1.0)

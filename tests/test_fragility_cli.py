@@ -76,3 +76,31 @@ def test_empty_folder(tmp_path):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
                               str(tmp_path), "--no-store"])
     assert res.exit_code == 2 and "holds no record" in res.stderr
+
+
+@pytest.mark.slow
+def test_design_with_records(tmp_path):
+    import numpy as np
+
+    import rockarch as ra
+
+    for c in (180, 270):  # the first 10 s of El Centro as two-column files
+        m = ra.el_centro(c)
+        np.savetxt(tmp_path / f"elc{c}.txt", np.c_[m.t[:1000], m.a[:1000]])
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
+                              "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
+                              "--curve", "simplified", "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    f = out["fragility"]
+    assert f["n_records"] == 2
+    assert 0 <= f["probability_at_pga"]["probability"] <= 1
+    assert f["pga_at_probability"]["probability"] == 0.1
+    assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
+    assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
+
+
+def test_design_needs_site_or_records(folder):
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
+                              "--thickness", "1"])
+    assert res.exit_code == 2 and "give either --site FILE or --records DIR" in res.stderr

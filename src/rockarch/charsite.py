@@ -207,3 +207,20 @@ def skill(ds: xr.Dataset) -> dict:
         out[name] = {"dispersion": float(lr.std()), "bias": float(lr.mean()),
                      "safe": float(np.mean(lr >= 0)), "pairs": int(use.sum())}
     return out
+
+
+#: p grid and ratio grid of a site OAS computed on the fly (``rockarch design --records``).
+DESIGN_P = np.round(np.geomspace(0.5, 10.0, 40), 6)
+DESIGN_RATIO = np.round(np.linspace(1.0, 5.0, 81), 12)
+
+
+def site_from_records(suite, *, percentile: float = 50.0, executor=None, store=None,
+                      progress: bool = False) -> xr.Dataset:
+    """The slender-block site OAS of a suite (:func:`rockarch.suite.read_suite`) on
+    :data:`DESIGN_P` × :data:`DESIGN_RATIO`, with the characteristic curves added."""
+    from rockarch import site
+
+    ds = site.site_oas(suite.motions, DESIGN_P, DESIGN_RATIO, percentile=percentile,
+                       progress=progress, executor=executor, store=store)
+    ds["record_name"] = (("record",), np.array(suite.names, dtype=object))
+    return characteristic(ds, suite.motions)

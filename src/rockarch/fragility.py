@@ -404,3 +404,48 @@ def fragility(system, motions: Sequence[GroundMotion], p: float, *,
     keywords as :func:`ida` (im, period, ratio, tol, executor, store, ...)."""
     return fit_ida(ida(system, motions, p, **ida_kw), n_bootstrap=n_bootstrap, level=level,
                    im_grid=im_grid, seed=seed)
+
+
+def site_fragility(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
+                   alpha: float | None = None, names=None, ratio=None, tol: float = OAS_TOL,
+                   t_free: float | None = None, n_bootstrap: int = N_BOOTSTRAP,
+                   seed: int = 0, executor=None, store=None, progress: bool = False
+                   ) -> Fragility:
+    """Fragility in PGA [m/s²] of a structure replaced by the site's slender block (the
+    design method of docs/theory.md Sect. 7): the IDA of the block of slenderness
+    ``alpha`` (default the site's) at the structure's ``p``, with collapse points in units
+    of the structure's ``ap_min`` (PGA = ratio·ap_min, Eq. (11.30))."""
+    from dataclasses import replace
+
+    from rockarch import site
+    from rockarch.systems import BlockSystem
+
+    kw = {} if t_free is None else {"t_free": t_free}
+    block = BlockSystem(alpha=site.ALPHA if alpha is None else alpha, **kw)
+    res = ida(block, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
+              store=store, progress=progress)
+    res = replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
+                  f"(replacement, ap,min = {ap_min:.4g} m/s2)")
+    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed)
+
+
+def design_summary(frag: Fragility, *, pga: float | None = None,
+                   probability: float | None = 0.1, g: float | None = None) -> dict:
+    """What ``rockarch design --records`` reports of the replacement's fragility: θ, β,
+    the probability of collapse at ``pga`` [m/s²] and the PGA at ``probability``."""
+    from rockarch.constants import G
+
+    g = G if g is None else g
+    fit = frag.fit
+    out = {"median": fit.median, "beta": fit.beta, "n_records": len(frag.ida.records),
+           "n_censored": fit.n_censored, "ci": {k: frag.ci[k] for k in ("level", "median",
+                                                                       "beta")
+                                               if k in frag.ci}}
+    if pga is not None:
+        if not (math.isfinite(pga) and pga > 0):
+            raise ValueError(f"--pga must be a finite number > 0 [m/s²], got {pga}")
+        out["probability_at_pga"] = {"pga": pga, "probability": float(fit.probability(pga))}
+    if probability is not None:
+        x = float(fit.intensity(probability))
+        out["pga_at_probability"] = {"probability": probability, "pga": x, "pga_g": x / g}
+    return out
