@@ -6,17 +6,14 @@ piecewise-linear excitation (Nigam & Jennings 1969; docs/theory.md Eq. (11.6)):
 
     [u, u']_{k+1} = Φ_xx [u, u']_k + Φ_xa a_k + Φ_xs (a_{k+1} − a_k)/h,
 
-with Φ = exp(K h) of the augmented state [u, u', a_g, a_g'] (K in docs/theory.md),
-
-whose coefficients (the blocks of the exponential of the augmented system matrix) are
-computed once per period by the caller. Each sample interval is cut into ``sub`` equal
-sub-steps (a_g linear inside), so that the peak is sampled finely enough.
+with Φ = exp(K h) the exponential of the system matrix K of the augmented state
+[u, u', a_g, a_g'] (computed once per period by the caller). Each sample interval is cut
+into ``sub`` equal sub-steps (a_g linear inside), so that the peak is sampled finely enough.
 """
 
 from __future__ import annotations
 
 import numba as nb
-import numpy as np
 
 
 @nb.njit(cache=True)

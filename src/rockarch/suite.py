@@ -18,6 +18,9 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+import numpy as np
+
+from rockarch.constants import G_STANDARD
 from rockarch.motion import GroundMotion
 from rockarch.records import read_record
 
@@ -390,3 +393,27 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
         d.update(intensity.measures(rec.motion, per, zeta).to_dict())
         out.append(d)
     return out
+
+
+def write_at2(path: str | Path, motion: GroundMotion, *, event: str = "", date: str = "",
+              station: str = "", component: str = "") -> Path:
+    """Write a uniformly sampled motion as a PEER-layout ``.AT2`` file (units of g, 5
+    values a line, 7 significant digits), readable by :func:`rockarch.records.read_at2`.
+    The title line is ``EVENT, DATE, STATION, COMPONENT`` as in NGA-West2 files."""
+    t = np.asarray(motion.t)
+    dt = float((t[-1] - t[0]) / (t.size - 1))
+    if abs(t[0]) > 1e-12 or np.any(np.abs(np.diff(t) - dt) > 1e-9 * max(dt, 1.0)):
+        raise ValueError(f"{motion.name}: only a uniformly sampled motion starting at t = 0 "
+                         "can be written as .AT2")
+    vals = np.asarray(motion.a) / G_STANDARD
+    rows = [" ".join(f"{v:15.7E}" for v in vals[k:k + 5]) for k in range(0, vals.size, 5)]
+    for name, text in (("event", event), ("station", station), ("component", component)):
+        if "," in text or "\n" in text:
+            raise ValueError(f"{name} may not contain commas or newlines: {text!r}")
+    lines = ["ROCKARCH RECORD (PEER NGA .AT2 LAYOUT)",
+             f"{event}, {date}, {station}, {component}",
+             "ACCELERATION TIME SERIES IN UNITS OF G",
+             f"NPTS={vals.size:7d}, DT={dt:10.7f} SEC", *rows]
+    path = Path(path)
+    path.write_text("\n".join(lines) + "\n", encoding="latin-1")
+    return path

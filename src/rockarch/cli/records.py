@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from rockarch import intensity
+from rockarch import intensity, synthetic
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
@@ -62,3 +62,27 @@ def info(
                    f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
                    f"{r['tm']:5.2f}")
     typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s; Sa(T) in --json")
+
+
+@records_app.command("synth", short_help="Write a seeded synthetic suite of .AT2 records.")
+@guarded
+def synth(
+    directory: Path = typer.Argument(..., help="Folder to write (created if missing)."),
+    n: int = typer.Option(50, "--n", help="Number of records."),
+    seed: int = typer.Option(0, help="Random seed (same seed, same records)."),
+    dt: float = typer.Option(synthetic.DT, help="Time step [s]."),
+    f_corner: float = typer.Option(synthetic.F_CORNER, help="High-pass corner [Hz] (0: none)."),
+    json_out: bool = JSON_OPT,
+) -> None:
+    """Synthetic records of the Rezaeian & Der Kiureghian (2008) stochastic model, written
+    as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
+    if f_corner < 0:
+        raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
+    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner)
+    if json_out:
+        print_json({"directory": str(directory), "seed": seed,
+                    "records": [p.name for p in paths],
+                    "parameters": str(directory / synthetic.PARAMETERS_FILE)})
+        return
+    typer.echo(f"wrote {len(paths)} synthetic record(s) to {directory} (seed {seed}); "
+               f"parameters in {synthetic.PARAMETERS_FILE}")
