@@ -3,6 +3,7 @@ fragility curve (docs/theory.md Sect. 11.3)."""
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -16,6 +17,11 @@ from rockarch.cli._common import Shape, System, echo_err, guarded, value
 from rockarch.cli._sweep import open_sweep
 from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
+
+#: From this many records the IDA runs on local processes unless told otherwise: each
+#: bisection round is one simulation per record, in parallel only across processes
+#: (benchmarks/fragility.py: 1.9x on 2 cores for 50 records).
+POOL_MIN_RECORDS = 16
 
 
 def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
@@ -87,6 +93,9 @@ def fragility(
     cc.check_outputs(plot)
     suite = read_suite(records, units=units)
     motions = suite.motions
+    if workers is None and scheduler is None and dask_workers is None \
+            and len(motions) >= POOL_MIN_RECORDS and (os.cpu_count() or 1) > 1:
+        workers = os.cpu_count()  # records in parallel (bisection rounds are 1 sim each)
     with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
                     store_dir=store, no_store=no_store, n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
