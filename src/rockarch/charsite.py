@@ -202,11 +202,19 @@ def skill(ds: xr.Dataset) -> dict:
     out = {"pairs": int(ok.sum()), "censored_pairs": int((~ok).sum())}
     for name, pred in (("raw", raw), ("normalised", norm),
                        ("simplified", ds["simplified_record"].values)):
-        use = ok & np.isfinite(pred)
-        lr = np.log(b[use] / pred[use])
-        out[name] = {"dispersion": float(lr.std()), "bias": float(lr.mean()),
-                     "safe": float(np.mean(lr >= 0)), "pairs": int(use.sum())}
+        out[name] = log_skill(b, pred)
     return out
+
+
+def log_skill(boundary, predicted) -> dict:
+    """Dispersion (std), bias (mean) of ln(boundary/predicted) and the safe fraction
+    (predicted <= boundary) over the pairs where both are finite."""
+    b = np.asarray(boundary, dtype=float)
+    pred = np.asarray(predicted, dtype=float)
+    use = np.isfinite(b) & np.isfinite(pred)
+    lr = np.log(b[use] / pred[use])
+    return {"dispersion": float(lr.std()), "bias": float(lr.mean()),
+            "safe": float(np.mean(lr >= 0)), "pairs": int(use.sum())}
 
 
 #: p grid and ratio grid of a site OAS computed on the fly (``rockarch design --records``).
