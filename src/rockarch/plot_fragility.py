@@ -6,6 +6,7 @@ import numpy as np
 
 from rockarch.constants import G_STANDARD
 from rockarch.fragility import Fragility
+from rockarch.output.figures import subplots
 
 #: Plot units of each intensity measure: (label, factor from SI).
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
@@ -23,11 +24,6 @@ def plot_fragility(frag: Fragility, im_range=None):
     widened by 2 on each side), the bootstrap band if computed, the collapse points as an
     empirical distribution (plotting positions (i − 0.5)/n) and the censored records at
     their scan limit. Returns the figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     r, fit, ci = frag.ida, frag.fit, frag.ci
     label, f = display_units(r.im)
     x = r.im_collapse
@@ -35,7 +31,7 @@ def plot_fragility(frag: Fragility, im_range=None):
         known = np.concatenate([x[np.isfinite(x)], r.im_limit])
         im_range = (known.min() / 2, known.max() * 2)
     grid = np.geomspace(im_range[0], im_range[1], 300)
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = subplots(figsize=(6.4, 4.6))
     if ci.get("im"):
         ax.fill_between(np.asarray(ci["im"]) * f, ci["probability_lo"],
                         ci["probability_hi"], color="#6a9fd4", alpha=0.3, lw=0,
