@@ -164,9 +164,12 @@ def reproduce(out, *, quick: bool = False,
     for section in extra_sections or []:
         parts.append(section(out, quick))
     log("Fig. 19 …")
-    paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
+    rows19 = paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
                 mdof_blocks=blocks)
-    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>")
+    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>" + _table(
+        ["signal", "curve", "p where at or below the MDOF arch", "mean relative gap"],
+        [[r["signal"], r["curve"], f"{100 * r['safe']:.0f} %", f"{100 * r['mean_rel']:+.1f} %"]
+         for r in rows19]))
     log("Sect. 9 …")
     s9 = paper.sect9(out, n_p=40 if quick else 100)
     parts.append(
