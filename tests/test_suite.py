@@ -146,6 +146,11 @@ def test_records_info_text(folder):
     res = runner.invoke(app, ["records", "info", str(folder)])
     assert res.exit_code == 0, res.output
     assert "El Centro Array #9" in res.stdout and "0.281" in res.stdout
+    assert "Vs30" not in res.stdout  # no csv: no metadata columns
+    shutil.copy(FIXTURE, folder / "_SearchResults.csv")
+    res = runner.invoke(app, ["records", "info", str(folder), "--apply-scale"])
+    assert res.exit_code == 0, res.output
+    assert "Vs30" in res.stdout and " 0.421 " in res.stdout  # 0.281 g × 1.5
 
 
 @pytest.mark.skipif(not SHARED.is_dir(), reason="shared record folder absent")
