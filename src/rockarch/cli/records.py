@@ -88,13 +88,17 @@ def synth(
     seed: int = typer.Option(0, help="Random seed (same seed, same records)."),
     dt: float = typer.Option(synthetic.DT, help="Time step [s]."),
     f_corner: float = typer.Option(synthetic.F_CORNER, help="High-pass corner [Hz] (0: none)."),
+    pulse_fraction: float = typer.Option(0.0, help="Probability that a record carries a "
+                                         "near-fault velocity pulse (Mavroeidis & "
+                                         "Papageorgiou 2003), 0…1."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Synthetic records of the Rezaeian & Der Kiureghian (2008) stochastic model, written
     as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
-    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner)
+    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner,
+                                  pulse_fraction=pulse_fraction)
     if json_out:
         print_json({"directory": str(directory), "seed": seed,
                     "records": [p.name for p in paths],
