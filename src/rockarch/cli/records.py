@@ -65,7 +65,7 @@ def info(
                 f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
                 f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
                 f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
-                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {r['tp']:5.2f}")
+                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {_num(r['tp'], 5, 2)}")
         if meta:
             line += "".join(f" {_num(r[k], w, d)}" for k, w, d in
                             (("magnitude", 5, 2), ("rrup", 6, 1), ("vs30", 6, 0),
