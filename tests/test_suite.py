@@ -195,3 +195,15 @@ def test_records_info_of_a_very_short_record(tmp_path):
     assert r["tp"] is None and r["pulse_class"] == "-" and r["pga"] > 0
     res = runner.invoke(app, ["records", "info", str(tmp_path), "--units", "g"])
     assert res.exit_code == 0 and "short.txt" in res.stdout
+
+
+def test_records_info_plot(folder, tmp_path):
+    out = tmp_path / "spectra.png"
+    one = str(folder / "RSN6_IMPVALL.I_I-ELC270-hor2.AT2")
+    res = runner.invoke(app, ["records", "info", one, "--periods", "1", "--plot", str(out),
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["plot"] == str(out)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    res = runner.invoke(app, ["records", "info", one, "--plot", str(tmp_path / "no" / "x.png")])
+    assert res.exit_code == 2 and "directory does not exist" in res.stderr

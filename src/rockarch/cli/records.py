@@ -9,7 +9,7 @@ import typer
 
 from rockarch import intensity, synthetic
 from rockarch.cli._app import app
-from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
+from rockarch.cli._common import JSON_OPT, check_outputs, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
 from rockarch.suite import describe, read_suite
 
@@ -38,18 +38,27 @@ def info(
     periods: str = typer.Option(",".join(f"{p:g}" for p in intensity.PERIODS),
                                 help="Periods of Sa(T) [s], comma-separated."),
     damping: float = typer.Option(intensity.DAMPING, help="Damping ratio of Sa(T)."),
+    plot: Path = typer.Option(None, help="PNG of the records' Sa/PGA spectra, median and "
+                              "16–84 % band."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Each record's event, station, component, dt, duration and intensity measures (PGA,
     PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
     in --json."""
     per = float_list("--periods", periods)
+    check_outputs(plot)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
+    if plot is not None:
+        from rockarch.plot import save_figure
+        from rockarch.plot_suite import plot_spectra
+
+        save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),
-                    "damping": damping, "records": rows, "notes": list(suite.notes)})
+                    "damping": damping, "records": rows, "notes": list(suite.notes),
+                    "plot": None if plot is None else str(plot)})
         return
     if suite.csv:
         typer.echo(f"metadata: {suite.csv}")
@@ -74,6 +83,8 @@ def info(
     typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s (Baker 2007 pulse "
                "period)" + ("; Rrup km, Vs30 m/s, SF csv scale factor" if meta else "")
                + "; Sa(T) in --json")
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
 
 
 def _num(value, width: int, digits: int) -> str:
