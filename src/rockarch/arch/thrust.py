@@ -24,7 +24,8 @@ import numpy as np
 from scipy.optimize import brentq, linprog
 
 from rockarch._validate import in_range, positive
-from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch, Voussoirs, voussoirs
+from rockarch.arch.cutting import Voussoirs, voussoirs
+from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch
 from rockarch.constants import G
 
 _LAMBDA_CAP = 1e3  # a "mechanism" needing more than 1000 g is no mechanism
@@ -39,7 +40,7 @@ class Hinge:
     y: float
     side: str  # "intrados" | "extrados"
 
-    def as_dict(self, joint: bool = True) -> dict:
+    def to_dict(self, joint: bool = True) -> dict:
         return {"x": self.x, "y": self.y, "side": self.side,
                 "joint": self.joint if joint else None}
 
