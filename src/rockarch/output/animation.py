@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from matplotlib.collections import PolyCollection
 from matplotlib.colors import to_rgb
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
@@ -149,8 +150,10 @@ class _Renderer:
             resp, _config(resp, int(plan.indices[-1]), plan.final_magnify)))
         self._ground_axes(axg)
         fig.subplots_adjust(left=0.07, right=0.98, top=0.9, bottom=0.25, wspace=0.25)
-        self.patches = [ax.add_patch(Polygon(p, closed=True, fc="0.82", ec="0.25", lw=0.6,
-                                             animated=True)) for p in rest]
+        # add_artist, not add_patch: the limits are set above, and add_patch's data-limit
+        # update walks every curve segment (the larger part of the drawing time otherwise)
+        self.patches = [ax.add_artist(Polygon(p, closed=True, fc="0.82", ec="0.25", lw=0.6,
+                                              animated=True)) for p in rest]
         self.joint_lines = [ax.plot([], [], lw=3, solid_capstyle="round", animated=True)[0]
                             for _ in range(resp.assembly.n_joints)]
         self.marker = axg.axvline(0.0, color="k", lw=1, animated=True)
@@ -171,8 +174,9 @@ class _Renderer:
         ax.axhline(0.0, color="0.3", lw=1)
         ax.set_xlabel("x [m] (frame moving with the ground)")
         ax.set_ylabel("y [m]")
-        for poly in rest:
-            ax.add_patch(Polygon(poly, closed=True, fill=False, ec="0.65", ls="--", lw=0.5))
+        ax.add_collection(PolyCollection(rest, closed=True, facecolors="none",
+                                         edgecolors="0.65", linestyles="--", linewidths=0.5),
+                          autolim=False)
         ax.legend(handles=[Line2D([], [], color=c, lw=3, label=f"joint {lab}")
                            for c, lab in STATE_STYLE.values()]
                   + [Line2D([], [], color="0.65", ls="--", lw=0.8, label="at rest")],
