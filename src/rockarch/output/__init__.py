@@ -8,6 +8,17 @@ histories, site OAS), :mod:`~rockarch.output.arch_plots` (arch drawings),
 :mod:`~rockarch.output.report` (design report), :mod:`~rockarch.output.animation` (MDOF
 GIF), :mod:`~rockarch.output.tables` (text tables). Importing this package does not import
 matplotlib; the names below load their module on first use.
+
+A command that writes files checks them all first, before any computation, then writes
+them together::
+
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
+    ...  # compute
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        save(ds, out_tmp)
+        save_figure(fig, plot_tmp)
+
+A new kind of file: add it to :data:`FORMATS` (name, extensions, description).
 """
 
 from __future__ import annotations
