@@ -3,8 +3,9 @@
 The static parts (axes, labels, legend, the a_g(t) curve) are rendered once; each frame
 restores that background and draws only what moves (the block polygons, the open joints,
 the time marker, the title) on the Agg canvas, then maps the pixels onto one fixed
-256-colour palette. Frames are taken at ``fps`` per second of simulated time, so the GIF
-plays in real time unless ``max_frames`` caps the count (then frames are spread evenly).
+256-colour palette. Frames are taken at ``fps`` per second of simulated time (at most
+``max_frames``, then spread evenly) and each is shown for the time to the next one, so the
+GIF plays in real time.
 The last frame is held and shows what its title says: the configuration at the last
 record (for a collapse: at t_overturn), with the displacements magnified by the stated
 factor when they would otherwise be too small to see.
