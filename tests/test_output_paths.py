@@ -93,6 +93,17 @@ def test_staged_failure_leaves_nothing_and_hides_temporaries(tmp_path):
     assert "b.png: cannot write" in msg and ".tmp" not in msg
 
 
+def test_nested_stages_report_the_final_target_once(tmp_path):
+    def fails(tmp):
+        raise OSError(28, "No space left on device", str(tmp))
+
+    with pytest.raises(ValueError) as err:
+        with staged(tmp_path / "a.nc", tmp_path / "b.png") as (_, tb):
+            atomic_write(tb, fails)  # e.g. save_figure on the staged temporary
+    assert str(err.value) == f"{tmp_path / 'b.png'}: cannot write: No space left on device"
+    assert _leftovers(tmp_path) == []
+
+
 def test_staged_success_renames_all_and_keeps_none_slots(tmp_path):
     a, b = tmp_path / "a.txt", tmp_path / "b.txt"
     with staged(a, None, b) as (ta, none, tb):

@@ -27,6 +27,7 @@ import importlib
 
 from rockarch.output.paths import (
     FORMATS,
+    OutputError,
     atomic_write,
     check_output,
     check_output_dir,
@@ -50,5 +51,5 @@ def __getattr__(name: str):
     raise AttributeError(f"module 'rockarch.output' has no attribute {name!r}")
 
 
-__all__ = ["FORMATS", "atomic_write", "check_output", "check_output_dir", "check_outputs",
-           "staged", "write_text", *_LAZY]
+__all__ = ["FORMATS", "OutputError", "atomic_write", "check_output", "check_output_dir",
+           "check_outputs", "staged", "write_text", *_LAZY]
