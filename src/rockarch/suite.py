@@ -206,7 +206,7 @@ def _number(path, line: int, col: str, text: str, kind=float):
         return None
     try:
         v = kind(float(s)) if kind is int else kind(s)
-    except ValueError:
+    except (ValueError, OverflowError):  # OverflowError: int(inf)
         raise ValueError(f"{path}: line {line}: column {col!r} should be a number, found "
                          f"{s!r}") from None
     if isinstance(v, float) and not math.isfinite(v):
