@@ -145,8 +145,13 @@ def curve_at(ds: xr.Dataset, p: float, curve: str = "envelope") -> tuple[float, 
     Returns (ratio, is_lower_bound): where no record overturns within the ratio range the
     largest ratio of the range is used, a safe lower bound of the true value.
     """
-    if curve not in ("envelope", "characteristic"):
-        raise ValueError(f"curve must be 'envelope' or 'characteristic', got {curve!r}")
+    from rockarch.charsite import CURVES
+
+    if curve not in CURVES:
+        raise ValueError(f"curve must be one of {', '.join(CURVES)}, got {curve!r}")
+    if curve not in ds:
+        raise ValueError(f"the site OAS has no {curve!r} curve: compute it from the records "
+                         "(rockarch design --records DIR)")
     ps = ds["p"].values
     if not ps[0] <= p <= ps[-1]:
         raise ValueError(f"the site OAS covers p = {ps[0]:g}…{ps[-1]:g} 1/s, the structure "
