@@ -11,7 +11,7 @@ from rockarch import intensity, synthetic
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
-from rockarch.output import check_output_dir, check_outputs
+from rockarch.output import check_outputs
 from rockarch.suite import describe, read_suite
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
@@ -52,7 +52,7 @@ def info(
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
     if plot is not None:
-        from rockarch.output import save_figure
+        from rockarch.output.figures import save_figure
         from rockarch.plot_suite import plot_spectra
 
         save_figure(plot_spectra(suite, damping=damping), plot)
@@ -109,7 +109,7 @@ def synth(
     as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
-    check_output_dir(directory, "DIRECTORY")
+    check_outputs((directory, "DIRECTORY", "dir"))
     paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner,
                                   pulse_fraction=pulse_fraction)
     if json_out:
