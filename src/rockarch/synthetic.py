@@ -346,7 +346,7 @@ PARAMETERS_FILE = "_synthetic_parameters.csv"
 def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
                 f_corner: float = F_CORNER, pulse_fraction: float = 0.0) -> list:
     """Write ``n`` synthetic records as ``.AT2`` files ``rdk-s{seed}-{k:03d}.AT2`` into
-    ``directory`` (created if its parent exists), with their model parameters in
+    ``directory`` (created with its missing parents), with their model parameters in
     :data:`PARAMETERS_FILE`. Returns the record paths."""
     from pathlib import Path
 
