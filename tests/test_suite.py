@@ -86,6 +86,8 @@ def test_apply_scale_without_csv_is_an_error(folder):
      "line 2: column 'magnitude' should be a number"),
     (" Result ID, Record Sequence Number, Scale Factor\n 1, 6, -2\n",
      "scale factor must be > 0"),
+    (" Result ID, Record Sequence Number, Year\n 1, 6, inf\n",
+     "line 2: column 'year' should be a number"),
     (" Result ID, Record Sequence Number, Scale Factor, Magnitude, Vs30\n 1, 6\n",
      "truncated row"),
 ])
@@ -173,6 +175,8 @@ def test_vertical_components_are_left_out_unless_asked(folder_csv):
     assert len(suite.read_suite(folder_csv, vertical=True)) == 3
     only = suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], vertical=True)
     assert only[0].component == "270"  # the header's component (this is a copy of 270)
+    motions, hashes = site.load_records([folder_csv])  # site-oas reads the same records
+    assert len(motions) == 2 and len(set(hashes)) == 2
     with pytest.raises(ValueError, match="every record is a vertical component"):
         suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], search_results=FIXTURE)
 

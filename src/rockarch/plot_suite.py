@@ -1,5 +1,5 @@
 """Figures of a record suite: response spectra of its records (``rockarch records info
---plot``). Matplotlib, Agg backend (through :mod:`rockarch.plot`)."""
+--plot``). Agg canvases of :mod:`rockarch.output.figures` (no pyplot state)."""
 
 from __future__ import annotations
 

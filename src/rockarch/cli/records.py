@@ -109,6 +109,7 @@ def synth(
     as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
+    check_outputs((directory, "DIRECTORY", "dir"))
     paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner,
                                   pulse_fraction=pulse_fraction)
     if json_out:
