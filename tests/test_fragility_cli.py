@@ -89,7 +89,8 @@ def test_design_with_records(tmp_path):
         np.savetxt(tmp_path / f"elc{c}.txt", np.c_[m.t[:1000], m.a[:1000]])
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
                               "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
-                              "--curve", "simplified", "--json"])
+                              "--curve", "simplified", "--json", "--report",
+                              str(tmp_path / "r.html")])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     f = out["fragility"]
@@ -98,6 +99,8 @@ def test_design_with_records(tmp_path):
     assert f["pga_at_probability"]["probability"] == 0.1
     assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
+    page = (tmp_path / "r.html").read_text()
+    assert "Fragility of the replacement" in page and "--records" in page
 
 
 def test_design_needs_site_or_records(folder):

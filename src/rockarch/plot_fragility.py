@@ -59,3 +59,32 @@ def plot_fragility(frag: Fragility, im_range=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
     return fig
+
+
+def fragility_html(frag: Fragility, summary: dict) -> str:
+    """An HTML section (figure inlined as base64 PNG) of the replacement's fragility for the
+    design report: the curve with its band and points, θ, β and the probabilities of
+    :func:`rockarch.fragility.design_summary`."""
+    import base64
+    import io
+
+    import matplotlib.pyplot as plt
+
+    fig = plot_fragility(frag)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=100, bbox_inches="tight")
+    plt.close(fig)
+    png = base64.b64encode(buf.getvalue()).decode()
+    rows = [("median PGA θ [m/s²]", f"{summary['median']:.3f}"),
+            ("β", f"{summary['beta']:.3f}"),
+            ("records (censored)", f"{summary['n_records']} ({summary['n_censored']})")]
+    for key in ("probability_at_pga", "pga_at_probability"):
+        if key in summary:
+            d = summary[key]
+            rows.append((f"P(collapse) = {d['probability']:.3g} at PGA [m/s²]",
+                         f"{d['pga']:.3f}"))
+    table = "".join(f"<tr><th>{a}</th><td>{b}</td></tr>" for a, b in rows)
+    return ("<h2>Fragility of the replacement (IDA over the records)</h2>\n"
+            f'<img alt="fragility" src="data:image/png;base64,{png}">\n'
+            f"<table>{table}</table>\n<p>Lognormal fit by maximum likelihood (records "
+            "that do not collapse within the scan are censored), docs/theory.md §11.3.</p>")

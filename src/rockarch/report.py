@@ -110,9 +110,9 @@ def _table(rows: list[tuple[str, str]]) -> str:
 
 
 def write_report(result: DesignResult, site_ds: xr.Dataset, path, *, command: str,
-                 inputs: dict, site_path: str | None = None) -> Path:
+                 inputs: dict, site_path: str | None = None, extra_html: str = "") -> Path:
     """Write the HTML report atomically; ``command`` reruns the check, ``inputs`` lists the
-    arch's parameters."""
+    arch's parameters; ``extra_html`` (e.g. the fragility of a suite) follows the site OAS."""
     path = Path(path)
     if not path.resolve().parent.is_dir():
         raise ValueError(f"{path.parent}: directory does not exist")
@@ -161,6 +161,7 @@ delta = {rep.original.delta:.5f} rad.</p>
 <h2>Site OAS</h2>
 <img alt="site OAS" src="data:image/png;base64,{_png(site_figure(result, site_ds))}">
 <table><tr><th>record</th><th>PGA [g]</th><th>SHA-256 of the file</th></tr>{rec_rows}</table>
+{extra_html}
 <h2>Chain of conservative assumptions</h2>
 <ol>{''.join(f'<li>{html.escape(a)}</li>' for a in ASSUMPTIONS)}</ol>
 <h2>Inputs (to rerun)</h2>

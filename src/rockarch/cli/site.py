@@ -138,6 +138,18 @@ def design(
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
+    extra, html_extra = {}, ""
+    if records:
+        from rockarch import fragility as fr
+
+        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
+                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                                 ratio=site_ds["ratio"].values)
+        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
+        if report is not None:
+            from rockarch.plot_fragility import fragility_html
+
+            html_extra = fragility_html(frag, extra["fragility"])
     if report is not None:
         from rockarch.report import write_report
 
@@ -147,17 +159,9 @@ def design(
                   " ".join(f"--records {r}" for r in records))
                + f" --thickness-rule {thickness_rule} --curve {curve} --g {g:g}")
         write_report(res, site_ds, report, command=cmd,
-                     site_path=str(site_file) if site_file else None,
+                     site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
-    extra = {}
-    if records:
-        from rockarch import fragility as fr
-
-        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
-                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
-                                 ratio=site_ds["ratio"].values)
-        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
     if json_out:
         print_json({**res.to_dict(), **extra})
         return
