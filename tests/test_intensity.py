@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+import rockarch as ra
 from rockarch import intensity as im
 from rockarch.constants import G
 from rockarch.motion import GroundMotion
@@ -53,6 +54,21 @@ def test_recurrence_coefficients_equal_nigam_jennings_closed_form():
     np.testing.assert_allclose(coef[:4], a, rtol=1e-12, atol=1e-15)
     # constant a_g over h (no slope): u(h) = -(a/w^2)(1 - e (c + q s)) from rest
     np.testing.assert_allclose(coef[4], -(1 - e * (c + q * s)) / w**2, rtol=1e-9)
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.05, 0.5])
+def test_recurrence_coefficients_equal_the_matrix_exponential(zeta):
+    # independent route: exp(K h) of the augmented state [u, u', a_g, a_g'] (theory Eq. 11.6)
+    from scipy.linalg import expm
+
+    w, h = 2 * math.pi / 0.3, 0.002
+    k = np.array([[0, 1, 0, 0], [-w * w, -2 * zeta * w, -1, 0], [0, 0, 0, 1], [0, 0, 0, 0]])
+    phi = expm(k * h)
+    ref = [phi[0, 0], phi[0, 1], phi[1, 0], phi[1, 1], phi[0, 2], phi[1, 2],
+           phi[0, 3] / h, phi[1, 3] / h]
+    scale = np.array([1, h, w * w * h, 1, h * h, h, h * h, h])  # size of each coefficient
+    np.testing.assert_allclose(im._oscillator_coefficients(w, zeta, h) / scale,
+                               np.array(ref) / scale, rtol=0, atol=1e-9)
 
 
 def test_sa_tends_to_pga_for_a_rigid_oscillator():
@@ -143,3 +159,15 @@ def test_measures_of_el_centro_and_im_value():
 def test_bad_arguments_give_one_clear_error(call, match):
     with pytest.raises(ValueError, match=match):
         call(el_centro())
+
+
+def test_sa_of_a_square_pulse_keeps_its_jumps():
+    # square pulse of 4 knots (+a for T/2, -a for T/2) resampled for the recurrence. An
+    # oscillator 50x faster settles at +a/w² by T/2 (transient e^(-zeta w T/2) = 4e-4); the
+    # jump to -a then is a step of -2a from rest: peak a/w² (1 + 2 e^(-zeta pi/sqrt(1-z²)))
+    zeta = 0.05
+    m = ra.pulse("square", period=0.5)
+    sa = im.spectral_acceleration(m, [0.01], zeta)[0]
+    exact = 1 + 2 * math.exp(-zeta * math.pi / math.sqrt(1 - zeta**2))
+    assert m.t.size == 4
+    assert sa == pytest.approx(exact, rel=2e-3)  # transient 4e-4 x 2, jump spread 1e-4 T

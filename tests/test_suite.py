@@ -108,8 +108,14 @@ def test_two_column_records_in_a_folder_and_a_file_list(tmp_path):
     assert s.names == ["a.txt", "b.dat"]
     assert s[1].motion.pga == pytest.approx(0.2 * G_STANDARD, rel=1e-3)
     assert suite.read_suite([tmp_path / "b.dat"], units="g").names == ["b.dat"]
+    assert not s.notes
+    # a PGA of 0.1 read as cm/s² is 1.02e-4 g (plausible); 0.02 cm/s² is 2e-5 g: a note
+    np.savetxt(tmp_path / "c.txt", np.c_[t, 0.02 * np.sin(2 * np.pi * t)])
+    tiny = suite.read_suite([tmp_path / "a.txt", tmp_path / "c.txt"], units="cm/s2")
+    assert [n.split(":")[0] for n in tiny.notes] == ["c.txt"]
+    assert "not plausible" in tiny.notes[0]
     # site-oas reads folders through the same expansion
-    assert [p.name for p in site.record_paths([tmp_path])] == ["a.txt", "b.dat"]
+    assert [p.name for p in site.record_paths([tmp_path])] == ["a.txt", "b.dat", "c.txt"]
 
 
 def test_bad_sources_give_one_clear_error(tmp_path):
@@ -129,7 +135,8 @@ def test_records_info_json_lists_metadata_and_intensity_measures(folder_csv):
     assert names == ["RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "RSN6_IMPVALL.I_I-ELC270-hor2.AT2"]
     r = out["records"][0]
     for key in ("event", "station", "component", "dt", "duration", "pga", "pgv", "pgd",
-                "arias", "d5_95", "tm", "sa", "magnitude", "rrup", "vs30", "scale_factor"):
+                "arias", "d5_95", "tm", "sa", "magnitude", "rrup", "vs30", "scale_factor",
+                "pulse_indicator", "tp", "pulse_like", "pulse_class"):
         assert key in r
     assert r["pga"] == pytest.approx(1.5 * 0.281 * G_STANDARD, rel=2e-3)  # PEER 0.281 g × 1.5
     assert len(r["sa"]) == 2
@@ -139,6 +146,11 @@ def test_records_info_text(folder):
     res = runner.invoke(app, ["records", "info", str(folder)])
     assert res.exit_code == 0, res.output
     assert "El Centro Array #9" in res.stdout and "0.281" in res.stdout
+    assert "Vs30" not in res.stdout  # no csv: no metadata columns
+    shutil.copy(FIXTURE, folder / "_SearchResults.csv")
+    res = runner.invoke(app, ["records", "info", str(folder), "--apply-scale"])
+    assert res.exit_code == 0, res.output
+    assert "Vs30" in res.stdout and " 0.421 " in res.stdout  # 0.281 g × 1.5
 
 
 @pytest.mark.skipif(not SHARED.is_dir(), reason="shared record folder absent")
@@ -150,3 +162,24 @@ def test_shared_records_match_their_readme_pgas():
              "RSN1690_NORTH151_SYL360-hor2.AT2": 0.062}
     for name, value in table.items():
         assert pga_g[name] == pytest.approx(value, abs=5e-4)  # README rounds to 1e-3 g
+
+
+def test_vertical_components_are_left_out_unless_asked(folder_csv):
+    # a PEER vertical file: listed in the csv's "Vertical Acc. Filename" column
+    shutil.copy(bundled_record_path(270), folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2")
+    s = suite.read_suite(folder_csv)
+    assert "RSN6_IMPVALL.I_I-ELCUP.AT2" not in s.names and len(s) == 2
+    assert any("vertical component left out" in n for n in s.notes)
+    assert len(suite.read_suite(folder_csv, vertical=True)) == 3
+    only = suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], vertical=True)
+    assert only[0].component == "270"  # the header's component (this is a copy of 270)
+    with pytest.raises(ValueError, match="every record is a vertical component"):
+        suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], search_results=FIXTURE)
+
+
+def test_vertical_component_from_the_at2_header(tmp_path):
+    text = bundled_record_path(180).read_text(encoding="latin-1").splitlines()
+    text[1] = "Imperial Valley-02, 5/19/1940, El Centro Array #9, UP"
+    (tmp_path / "v.AT2").write_text("\n".join(text) + "\n", encoding="latin-1")
+    shutil.copy(bundled_record_path(180), tmp_path)
+    assert suite.read_suite(tmp_path).names == ["RSN6_IMPVALL.I_I-ELC180-hor1.AT2"]

@@ -17,7 +17,6 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy.linalg import expm
 
 from rockarch._validate import finite_array, in_range, positive
 from rockarch.constants import G
@@ -33,8 +32,9 @@ PERIODS = (0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
 POINTS_PER_PERIOD = 150
 #: Frequency band of the mean period Tm [Hz] (Rathje et al. 1998, 2004).
 TM_BAND = (0.25, 20.0)
-#: Largest number of samples a non-uniformly sampled motion is resampled to.
+#: Largest and smallest number of samples a non-uniformly sampled motion is resampled to.
 MAX_SAMPLES = 2_000_000
+MIN_SAMPLES = 4000
 #: Intensity measures proportional to the scale factor of the motion (used by IDA).
 LINEAR_IMS = ("pga", "pgv", "pgd", "sa")
 
@@ -136,14 +136,17 @@ def significant_duration(motion: GroundMotion, lo: float = 0.05, hi: float = 0.9
 
 def uniform_samples(motion: GroundMotion) -> tuple[float, np.ndarray]:
     """``(dt, a)`` on a uniform grid: the knots themselves when they are uniform (records),
-    else the motion resampled at its smallest knot spacing (pulses; a jump is then spread
-    over one step)."""
+    else the motion resampled at its smallest knot spacing, or finer so that it has at
+    least :data:`MIN_SAMPLES` samples (pulses; a jump is then spread over one step)."""
     t, a, h = _steps(motion)
     dt = (t[-1] - t[0]) / (t.size - 1)
     if np.all(np.abs(h - dt) <= 1e-6 * dt):
         return float(dt), np.asarray(a, dtype=float)
     pos = h[h > 0.0]
-    step = max(float(pos.min()), (t[-1] - t[0]) / MAX_SAMPLES)
+    # at least MIN_SAMPLES over the motion: a pulse of few knots (a square pulse has 4)
+    # keeps its shape, a jump is spread over a small fraction of it
+    step = max(min(float(pos.min()), (t[-1] - t[0]) / MIN_SAMPLES),
+               (t[-1] - t[0]) / MAX_SAMPLES)
     n = int(math.ceil((t[-1] - t[0]) / step)) + 1
     grid = t[0] + np.arange(n) * ((t[-1] - t[0]) / (n - 1))
     return float(grid[1] - grid[0]), motion(grid)
@@ -166,15 +169,30 @@ def mean_period(motion: GroundMotion, band: tuple[float, float] = TM_BAND) -> fl
     return float(np.sum(c2 / f[sel]) / np.sum(c2))
 
 
+def _oscillator_step(omega: float, zeta: float, h: float, u0: float, v0: float, a0: float,
+                     slope: float) -> tuple[float, float]:
+    """(u, u') after h of u'' + 2ζωu' + ω²u = −(a0 + slope·τ), in closed form: the
+    particular solution −(a0 + slope·τ)/ω² + 2ζ·slope/ω³ plus damped free vibration."""
+    wd = omega * math.sqrt(1.0 - zeta * zeta)
+    w2 = omega * omega
+    up0 = -a0 / w2 + 2.0 * zeta * slope / (w2 * omega)
+    c1 = u0 - up0
+    c2 = (v0 + slope / w2 + zeta * omega * c1) / wd
+    e, c, s = math.exp(-zeta * omega * h), math.cos(wd * h), math.sin(wd * h)
+    u = up0 - slope * h / w2 + e * (c1 * c + c2 * s)
+    v = -slope / w2 + e * ((wd * c2 - zeta * omega * c1) * c - (zeta * omega * c2 + wd * c1) * s)
+    return u, v
+
+
 def _oscillator_coefficients(omega: float, zeta: float, h: float) -> np.ndarray:
-    """Exact one-step coefficients of u'' + 2ζωu' + ω²u = −a_g, a_g linear over h."""
-    k = np.array([[0.0, 1.0, 0.0, 0.0],
-                  [-omega * omega, -2.0 * zeta * omega, -1.0, 0.0],
-                  [0.0, 0.0, 0.0, 1.0],
-                  [0.0, 0.0, 0.0, 0.0]])
-    phi = expm(k * h)
-    return np.array([phi[0, 0], phi[0, 1], phi[1, 0], phi[1, 1], phi[0, 2], phi[1, 2],
-                     phi[0, 3] / h, phi[1, 3] / h])
+    """Exact one-step coefficients of u'' + 2ζωu' + ω²u = −a_g, a_g linear over h
+    (Eq. (11.6); the step is linear in u, u', a_g and its change, so unit inputs give the
+    coefficients). The last two multiply the change of a_g over the step."""
+    unit = [(1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0),
+            (0.0, 0.0, 0.0, 1.0 / h)]
+    (uu, vu), (uv, vv), (ua, va), (us, vs) = (_oscillator_step(omega, zeta, h, *x)
+                                              for x in unit)
+    return np.array([uu, uv, vu, vv, ua, va, us, vs])
 
 
 def _check_periods(periods) -> np.ndarray:
@@ -252,12 +270,17 @@ class IntensityMeasures:
 
 def measures(motion: GroundMotion, periods: Sequence[float] = PERIODS,
              damping: float = DAMPING, g: float = G) -> IntensityMeasures:
-    """Every intensity measure of ``motion`` (Eqs. (11.1)–(11.7))."""
+    """Every intensity measure of ``motion`` (Eqs. (11.1)–(11.7)); ``tm`` is NaN where no
+    Fourier amplitude lies in its band (a constant or very short motion)."""
     per = _check_periods(periods)
     sa = spectral_acceleration(motion, per, damping)
+    try:
+        tm = mean_period(motion)
+    except ValueError:  # no Fourier amplitude in the band (a constant or very short motion)
+        tm = math.nan
     return IntensityMeasures(pga=pga(motion), pgv=pgv(motion), pgd=pgd(motion),
                              arias=arias(motion, g), d5_95=significant_duration(motion),
-                             tm=mean_period(motion), periods=tuple(float(x) for x in per),
+                             tm=tm, periods=tuple(float(x) for x in per),
                              sa=tuple(float(x) for x in sa), damping=float(damping))
 
 

@@ -7,8 +7,9 @@ piecewise-linear excitation (Nigam & Jennings 1969; docs/theory.md Eq. (11.6)):
     [u, u']_{k+1} = Φ_xx [u, u']_k + Φ_xa a_k + Φ_xs (a_{k+1} − a_k)/h,
 
 with Φ = exp(K h) the exponential of the system matrix K of the augmented state
-[u, u', a_g, a_g'] (computed once per period by the caller). Each sample interval is cut
-into ``sub`` equal sub-steps (a_g linear inside), so that the peak is sampled finely enough.
+[u, u', a_g, a_g'] (computed in closed form once per period by the caller). Each sample
+interval is cut into ``sub`` equal sub-steps (a_g linear inside), so that the peak is
+sampled finely enough.
 """
 
 from __future__ import annotations

@@ -323,8 +323,16 @@ def _header_fields(motion: GroundMotion) -> dict:
             "station": ", ".join(parts[2:-1]) or None, "component": parts[-1] or None}
 
 
+#: A record whose PGA lies outside this range [m/s²] has its units wrong (as in site-oas).
+PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
+
+
+#: Component names (AT2 header, lower case) of vertical records.
+VERTICAL = ("up", "dwn", "dn", "down", "v", "ver", "vert", "vertical", "z")
+
+
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
-               search_results: str | Path | None = None) -> Suite:
+               search_results: str | Path | None = None, vertical: bool = False) -> Suite:
     """Read a suite from files and folders (see :func:`record_files`).
 
     Parameters
@@ -338,10 +346,15 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     search_results : path, optional
         The NGA-West2 metadata csv; by default the ``_SearchResults.csv`` found in a folder
         given in ``sources`` (at most one).
+    vertical : bool
+        Keep vertical components (csv component V, or an ``.AT2`` header component such as
+        ``UP``); by default they are left out and listed in ``notes`` (rocking structures
+        are assessed under horizontal ground motion).
 
     Records without a csv row keep the metadata of their ``.AT2`` header; with
     ``apply_scale`` and a csv, a record missing from the csv is an error (its scale is
-    unknown).
+    unknown). A record missing from the csv or with an implausible PGA (outside
+    :data:`PGA_RANGE`: wrong units?) is listed in ``notes``.
     """
     files, metas = record_files(sources)
     if search_results is not None:
@@ -369,11 +382,21 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                 raise ValueError(f"{f.name}: not listed in {metas[0].name} (no RSN match), so "
                                  "its scale factor is unknown")
             notes.append(f"{f.name}: not listed in {metas[0].name}")
+        if not vertical and (comp == "V" or str(fields.get("component", "")).strip().lower()
+                             in VERTICAL):
+            notes.append(f"{f.name}: vertical component left out (--vertical keeps it)")
+            continue
         m = _RSN_NAME.match(f.name)
         if "rsn" not in fields and m:
             fields["rsn"] = int(m.group(1))
         rec = SuiteRecord(name=f.name, motion=motion, path=str(f), **fields)
         records.append(rec)
+        lo, hi = PGA_RANGE
+        if not lo <= motion.pga <= hi:
+            notes.append(f"{f.name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
+                         "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
+    if not records:
+        raise ValueError("every record is a vertical component: give --vertical to use them")
     suite = Suite(tuple(records), csv=str(metas[0]) if metas else None, notes=tuple(notes))
     return suite.scaled() if apply_scale else suite
 
@@ -382,8 +405,11 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
              damping: float | None = None) -> list[dict]:
     """Metadata and intensity measures of every record (``rockarch records info``): one dict
     per record, :meth:`SuiteRecord.metadata` plus the fields of
-    :class:`rockarch.intensity.IntensityMeasures` (``sa`` aligned with ``periods``)."""
+    :class:`rockarch.intensity.IntensityMeasures` (``sa`` aligned with ``periods``) and the
+    Baker (2007) pulse classification (``pulse_indicator``, ``tp`` [s], ``pulse_like``,
+    ``classification``, :mod:`rockarch.velocity_pulse`)."""
     from rockarch import intensity
+    from rockarch.velocity_pulse import baker_pulse
 
     per = intensity.PERIODS if periods is None else periods
     zeta = intensity.DAMPING if damping is None else damping
@@ -391,6 +417,9 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
     for rec in suite:
         d = rec.metadata()
         d.update(intensity.measures(rec.motion, per, zeta).to_dict())
+        pulse = baker_pulse(rec.motion).to_dict()
+        d.update(pulse_indicator=pulse["pulse_indicator"], tp=pulse["tp"],
+                 pulse_like=pulse["pulse_like"], pulse_class=pulse["classification"])
         out.append(d)
     return out
 

@@ -33,16 +33,19 @@ def info(
     units: str = UNITS_OPT,
     apply_scale: bool = APPLY_SCALE_OPT,
     search_results: Path = SEARCH_RESULTS_OPT,
+    vertical: bool = typer.Option(False, "--vertical", help="Keep vertical components "
+                                  "(left out by default)."),
     periods: str = typer.Option(",".join(f"{p:g}" for p in intensity.PERIODS),
                                 help="Periods of Sa(T) [s], comma-separated."),
     damping: float = typer.Option(intensity.DAMPING, help="Damping ratio of Sa(T)."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Each record's event, station, component, dt, duration and intensity measures (PGA,
-    PGV, PGD, Arias, D5-95, Tm, Sa(T)); SI units in --json."""
+    PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
+    in --json."""
     per = float_list("--periods", periods)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
-                       search_results=search_results)
+                       search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),
@@ -52,16 +55,29 @@ def info(
         typer.echo(f"metadata: {suite.csv}")
     for note in suite.notes:
         typer.echo(f"note: {note}")
-    typer.echo(f"{'record':40s} {'event':22s} {'station':26s} {'comp':>5s} {'dt':>6s} "
-               f"{'dur':>6s} {'PGA[g]':>7s} {'PGV':>6s} {'PGD':>6s} {'Ia':>6s} "
-               f"{'D5-95':>6s} {'Tm':>5s}")
+    meta = any(r["magnitude"] is not None or r["scale_factor"] is not None for r in rows)
+    head = (f"{'record':40s} {'event':22s} {'station':26s} {'comp':>5s} {'dt':>6s} "
+            f"{'dur':>6s} {'PGA[g]':>7s} {'PGV':>6s} {'PGD':>6s} {'Ia':>6s} "
+            f"{'D5-95':>6s} {'Tm':>5s} {'pulse':>10s} {'Tp':>5s}")
+    typer.echo(head + (f" {'M':>5s} {'Rrup':>6s} {'Vs30':>6s} {'SF':>6s}" if meta else ""))
     for r in rows:
-        typer.echo(f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
-                   f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
-                   f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
-                   f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
-                   f"{r['tm']:5.2f}")
-    typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s; Sa(T) in --json")
+        line = (f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
+                f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
+                f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
+                f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
+                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {r['tp']:5.2f}")
+        if meta:
+            line += "".join(f" {_num(r[k], w, d)}" for k, w, d in
+                            (("magnitude", 5, 2), ("rrup", 6, 1), ("vs30", 6, 0),
+                             ("scale_factor", 6, 3)))
+        typer.echo(line)
+    typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s (Baker 2007 pulse "
+               "period)" + ("; Rrup km, Vs30 m/s, SF csv scale factor" if meta else "")
+               + "; Sa(T) in --json")
+
+
+def _num(value, width: int, digits: int) -> str:
+    return f"{'-':>{width}s}" if value is None else f"{value:{width}.{digits}f}"
 
 
 @records_app.command("synth", short_help="Write a seeded synthetic suite of .AT2 records.")
