@@ -14,14 +14,37 @@ runner = CliRunner()
 
 
 @pytest.fixture(scope="module")
-def folder(tmp_path_factory):
+def full(tmp_path_factory):
+    """The two bundled El Centro components, whole (54 s each)."""
     d = tmp_path_factory.mktemp("suite")
     for c in (180, 270):
         shutil.copy(bundled_record_path(c), d)
     return d
 
 
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """Their first 12 s (the strong motion) as .AT2 files: the same checks, faster."""
+    import rockarch as ra
+    from rockarch.suite import write_at2
+
+    d = tmp_path_factory.mktemp("short")
+    for c in (180, 270):
+        m = ra.el_centro(c)
+        write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
+    return d
+
+
+@pytest.mark.slow
+def test_contract_full_records(full, tmp_path):
+    _check_contract(full, tmp_path)
+
+
 def test_contract(folder, tmp_path):
+    _check_contract(folder, tmp_path)
+
+
+def _check_contract(folder, tmp_path):
     png = tmp_path / "f.png"
     res = runner.invoke(app, ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2",
                               "--records", str(folder), "--im", "pga", "--no-store",
