@@ -150,3 +150,15 @@ def test_site_fragility_is_in_units_of_the_structures_ap_min(records):
     assert s["pga_at_probability"]["pga"] == pytest.approx(frag.fit.median)
     with pytest.raises(ValueError, match="--pga"):
         fr.design_summary(frag, pga=-1.0)
+
+
+@pytest.mark.slow
+def test_ida_of_an_mdof_arch_is_its_oas_boundary():
+    m = ra.el_centro()
+    m = ra.GroundMotion(m.t[:600], m.a[:600], "El Centro, first 6 s")
+    sys_ = ra.system("mdof", shape="circular", rise_over_span=0.5, thickness_over_span=0.15,
+                     blocks=8, t_free=2.0)
+    res = fr.ida(sys_, [m], 6.0, ratio=[1.0, 2.0, 4.0], tol=0.1)
+    ds = ra.oas(sys_, m, p=[6.0], ratio=[1.0, 2.0, 4.0], tol=0.1)
+    assert np.isfinite(res.ratio_collapse[0])
+    assert res.ratio_collapse[0] == ds["boundary"].values[0]
