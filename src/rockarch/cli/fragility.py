@@ -53,7 +53,8 @@ def fragility(
                                       "(default: the structure's own impact law)."),
     p: float = typer.Option(..., "--p", help="Frequency parameter of the structure [1/s]."),
     records: list[Path] = typer.Option(..., "--records", help="Folder of .AT2 records or "
-                                       "record files (repeat --records for several)."),
+                                       "record files; several may follow one --records."),
+    more: list[Path] = typer.Argument(None, hidden=True),
     units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
     im: str = typer.Option("pga", help="Intensity measure: pga, pgv or sa."),
     period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa)."),
@@ -91,7 +92,7 @@ def fragility(
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     rng = im_range_si(im_range, im)
     cc.check_outputs(plot)
-    suite = read_suite(records, units=units)
+    suite = read_suite(list(records) + list(more or []), units=units)
     motions = suite.motions
     if workers is None and scheduler is None and dask_workers is None \
             and len(motions) >= POOL_MIN_RECORDS and (os.cpu_count() or 1) > 1:
@@ -123,8 +124,9 @@ def fragility(
 
 def _print_table(frag: fr.Fragility) -> None:
     r, fit, unit = frag.ida, frag.fit, fr.IM_UNITS[frag.ida.im]
+    name = r.im if r.period is None else f"{r.im}(T = {r.period:g} s)"
     typer.echo(f"fragility of {r.system} at p = {r.p:g} 1/s over {len(r.records)} records "
-               f"(IM = {r.im} [{unit}])")
+               f"(IM = {name} [{unit}])")
     typer.echo(f"{'record':<44} {'IM at collapse':>15} {'resurrections':>14}")
     for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit, r.resurrections,
                                strict=True):
