@@ -50,7 +50,12 @@ def plot_fragility(frag: Fragility, im_range=None):
     if cens.size:
         ax.plot(cens * f, np.full(cens.size, 1.0), "^", ms=5, color="0.4", mfc="none",
                 label=f"censored: safe up to scan limit ({cens.size})")
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
     ax.set_xscale("log")
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlim(grid[0] * f, grid[-1] * f)
     ax.set_ylim(-0.02, 1.05)
     ax.set_xlabel(label if r.im != "sa" else f"Sa(T = {r.period:g} s) [g]")
