@@ -77,6 +77,8 @@ def _check_contract(folder, tmp_path):
     (["--im", "pgd"], "--im must be one of"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
+    (["--level", "95"], "--level must lie in (0, 1)"),
+    (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
 ])
 def test_bad_input_is_one_line(folder, extra, msg):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",

@@ -363,7 +363,7 @@ class Fragility:
     fit: LognormalFit
     ci: dict = field(default_factory=dict)
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         """The CLI's JSON: ``im``, ``median``, ``beta``, ``points`` and ``ci``."""
         r = self.ida
         points = [{"record": name, "im_collapse": (float(v) if math.isfinite(v) else None),

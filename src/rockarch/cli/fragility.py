@@ -82,6 +82,8 @@ def fragility(
         raise ValueError(f"--im must be one of {', '.join(fr.IMS)}, got {im!r}")
     if bootstrap < 0:
         raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
+    if not 0 < level < 1:
+        raise ValueError(f"--level must lie in (0, 1), got {level}")
     sysobj = make_system(system.value, alpha=alpha, shape=value(shape),
                          rise_over_span=rise_over_span,
                          thickness_over_span=thickness_over_span, blocks=blocks,
@@ -115,7 +117,7 @@ def fragility(
 
         save_figure(plot_fragility(frag, rng), plot)
     if json_out:
-        cc.print_json(frag.as_dict())
+        cc.print_json(frag.to_dict())
         return
     _print_table(frag)
     if plot is not None:
