@@ -74,6 +74,9 @@ def site_oas(
                                tol=tol, hashes=hashes, t_free=t_free,
                                progress=sys.stderr.isatty(), executor=executor,
                                store=chunk_store)
+    from rockarch.charsite import characteristic
+
+    ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
     site_mod.save(ds, out)
     if plot is not None:
         from rockarch.plot import plot_site, save_figure
@@ -109,7 +112,7 @@ def design(
                                        "equivalent (same ap,min) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
                               "(percentile), normalised (over p·Tm) or simplified (two "
-                              "durations); the last two need --records."),
+                              "durations)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
     json_out: bool = JSON_OPT,
