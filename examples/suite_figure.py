@@ -14,11 +14,11 @@ import argparse
 from pathlib import Path
 
 import numpy as np
+from rockarch.plot import plt, save_figure
 
 import rockarch as ra
 from rockarch import intensity as im
 from rockarch.constants import G_STANDARD
-from rockarch.plot import plt, save_figure
 from rockarch.records import el_centro
 from rockarch.velocity_pulse import baker_pulse
 

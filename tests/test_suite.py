@@ -183,3 +183,27 @@ def test_vertical_component_from_the_at2_header(tmp_path):
     (tmp_path / "v.AT2").write_text("\n".join(text) + "\n", encoding="latin-1")
     shutil.copy(bundled_record_path(180), tmp_path)
     assert suite.read_suite(tmp_path).names == ["RSN6_IMPVALL.I_I-ELC180-hor1.AT2"]
+
+
+def test_records_info_of_a_very_short_record(tmp_path):
+    # 0.1 s: no Fourier amplitude in the Tm band and shorter than any pulse period
+    t = np.arange(0.0, 0.1001, 0.01)
+    np.savetxt(tmp_path / "short.txt", np.c_[t, 0.5 * np.sin(20 * np.pi * t)])
+    res = runner.invoke(app, ["records", "info", str(tmp_path), "--units", "g", "--json"])
+    assert res.exit_code == 0, res.output
+    r = json.loads(res.stdout)["records"][0]
+    assert r["tp"] is None and r["pulse_class"] == "-" and r["pga"] > 0
+    res = runner.invoke(app, ["records", "info", str(tmp_path), "--units", "g"])
+    assert res.exit_code == 0 and "short.txt" in res.stdout
+
+
+def test_records_info_plot(folder, tmp_path):
+    out = tmp_path / "spectra.png"
+    one = str(folder / "RSN6_IMPVALL.I_I-ELC270-hor2.AT2")
+    res = runner.invoke(app, ["records", "info", one, "--periods", "1", "--plot", str(out),
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["plot"] == str(out)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    res = runner.invoke(app, ["records", "info", one, "--plot", str(tmp_path / "no" / "x.png")])
+    assert res.exit_code == 2 and "directory does not exist" in res.stderr

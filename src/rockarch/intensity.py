@@ -2,8 +2,8 @@
 duration D5–95, mean period Tm and 5 %-damped pseudo-spectral acceleration Sa(T).
 
 A :class:`rockarch.motion.GroundMotion` is piecewise linear between its knots, and every
-measure here is computed for that function: velocity and Arias intensity are exact
-integrals of it (docs/theory.md Eqs. (11.1)–(11.3)), Sa(T) uses the exact recurrence of a
+measure here is computed for that function: velocity, displacement and Arias intensity
+are exact integrals of it (docs/theory.md Eqs. (11.1)–(11.5)), Sa(T) uses the exact recurrence of a
 linear oscillator under piecewise-linear excitation (Nigam & Jennings 1969; Eq. (11.6)).
 Why not eqsig or pyrotd: docs/sites.md, "Intensity measures".
 

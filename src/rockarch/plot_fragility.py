@@ -6,6 +6,7 @@ import numpy as np
 
 from rockarch.constants import G_STANDARD
 from rockarch.fragility import Fragility
+from rockarch.output.figures import subplots
 
 #: Plot units of each intensity measure: (label, factor from SI).
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
@@ -23,11 +24,6 @@ def plot_fragility(frag: Fragility, im_range=None):
     widened by 2 on each side), the bootstrap band if computed, the collapse points as an
     empirical distribution (plotting positions (i − 0.5)/n) and the censored records at
     their scan limit. Returns the figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     r, fit, ci = frag.ida, frag.fit, frag.ci
     label, f = display_units(r.im)
     x = r.im_collapse
@@ -35,7 +31,7 @@ def plot_fragility(frag: Fragility, im_range=None):
         known = np.concatenate([x[np.isfinite(x)], r.im_limit])
         im_range = (known.min() / 2, known.max() * 2)
     grid = np.geomspace(im_range[0], im_range[1], 300)
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = subplots(figsize=(6.4, 4.6))
     if ci.get("im"):
         ax.fill_between(np.asarray(ci["im"]) * f, ci["probability_lo"],
                         ci["probability_hi"], color="#6a9fd4", alpha=0.3, lw=0,
@@ -70,16 +66,8 @@ def fragility_html(frag: Fragility, summary: dict) -> str:
     """An HTML section (figure inlined as base64 PNG) of the replacement's fragility for the
     design report: the curve with its band and points, θ, β and the probabilities of
     :func:`rockarch.fragility.design_summary`."""
-    import base64
-    import io
+    from rockarch.output.html import inline_figure, key_value_table
 
-    import matplotlib.pyplot as plt
-
-    fig = plot_fragility(frag)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100, bbox_inches="tight")
-    plt.close(fig)
-    png = base64.b64encode(buf.getvalue()).decode()
     rows = [("median PGA θ [m/s²]", f"{summary['median']:.3f}"),
             ("β", f"{summary['beta']:.3f}"),
             ("records (censored)", f"{summary['n_records']} ({summary['n_censored']})")]
@@ -88,8 +76,7 @@ def fragility_html(frag: Fragility, summary: dict) -> str:
             d = summary[key]
             rows.append((f"P(collapse) = {d['probability']:.3g} at PGA [m/s²]",
                          f"{d['pga']:.3f}"))
-    table = "".join(f"<tr><th>{a}</th><td>{b}</td></tr>" for a, b in rows)
     return ("<h2>Fragility of the replacement (IDA over the records)</h2>\n"
-            f'<img alt="fragility" src="data:image/png;base64,{png}">\n'
-            f"<table>{table}</table>\n<p>Lognormal fit by maximum likelihood (records "
+            f"{inline_figure(plot_fragility(frag), 'fragility')}\n"
+            f"{key_value_table(rows)}\n<p>Lognormal fit by maximum likelihood (records "
             "that do not collapse within the scan are censored), docs/theory.md §11.3.</p>")

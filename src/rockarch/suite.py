@@ -417,7 +417,11 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
     for rec in suite:
         d = rec.metadata()
         d.update(intensity.measures(rec.motion, per, zeta).to_dict())
-        pulse = baker_pulse(rec.motion).to_dict()
+        try:
+            pulse = baker_pulse(rec.motion).to_dict()
+        except ValueError:  # a record shorter than the shortest pulse period
+            pulse = {"pulse_indicator": None, "tp": None, "pulse_like": None,
+                     "classification": "-"}
         d.update(pulse_indicator=pulse["pulse_indicator"], tp=pulse["tp"],
                  pulse_like=pulse["pulse_like"], pulse_class=pulse["classification"])
         out.append(d)

@@ -15,6 +15,7 @@ from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import Shape, System, echo_err, guarded, value
 from rockarch.cli._sweep import open_sweep
+from rockarch.output import check_outputs
 from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
 
@@ -93,7 +94,7 @@ def fragility(
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     rng = im_range_si(im_range, im)
-    cc.check_outputs(plot)
+    check_outputs((plot, "--plot", "png"))
     suite = read_suite(list(records) + list(more or []), units=units)
     motions = suite.motions
     if workers is None and scheduler is None and dask_workers is None \
@@ -112,7 +113,7 @@ def fragility(
     grid = np.geomspace(rng[0], rng[1], 41)
     frag = fr.fit_ida(res, n_bootstrap=bootstrap, level=level, im_grid=grid)
     if plot is not None:
-        from rockarch.plot import save_figure
+        from rockarch.output.figures import save_figure
         from rockarch.plot_fragility import plot_fragility
 
         save_figure(plot_fragility(frag, rng), plot)

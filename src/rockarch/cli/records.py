@@ -9,7 +9,7 @@ import typer
 
 from rockarch import intensity, synthetic
 from rockarch.cli._app import app
-from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
+from rockarch.cli._common import JSON_OPT, check_outputs, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
 from rockarch.suite import describe, read_suite
 
@@ -38,18 +38,27 @@ def info(
     periods: str = typer.Option(",".join(f"{p:g}" for p in intensity.PERIODS),
                                 help="Periods of Sa(T) [s], comma-separated."),
     damping: float = typer.Option(intensity.DAMPING, help="Damping ratio of Sa(T)."),
+    plot: Path = typer.Option(None, help="PNG of the records' Sa/PGA spectra, median and "
+                              "16–84 % band."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Each record's event, station, component, dt, duration and intensity measures (PGA,
     PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
     in --json."""
     per = float_list("--periods", periods)
+    check_outputs(plot)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
+    if plot is not None:
+        from rockarch.plot import save_figure
+        from rockarch.plot_suite import plot_spectra
+
+        save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),
-                    "damping": damping, "records": rows, "notes": list(suite.notes)})
+                    "damping": damping, "records": rows, "notes": list(suite.notes),
+                    "plot": None if plot is None else str(plot)})
         return
     if suite.csv:
         typer.echo(f"metadata: {suite.csv}")
@@ -65,7 +74,7 @@ def info(
                 f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
                 f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
                 f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
-                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {r['tp']:5.2f}")
+                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {_num(r['tp'], 5, 2)}")
         if meta:
             line += "".join(f" {_num(r[k], w, d)}" for k, w, d in
                             (("magnitude", 5, 2), ("rrup", 6, 1), ("vs30", 6, 0),
@@ -74,6 +83,8 @@ def info(
     typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s (Baker 2007 pulse "
                "period)" + ("; Rrup km, Vs30 m/s, SF csv scale factor" if meta else "")
                + "; Sa(T) in --json")
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
 
 
 def _num(value, width: int, digits: int) -> str:
@@ -88,13 +99,17 @@ def synth(
     seed: int = typer.Option(0, help="Random seed (same seed, same records)."),
     dt: float = typer.Option(synthetic.DT, help="Time step [s]."),
     f_corner: float = typer.Option(synthetic.F_CORNER, help="High-pass corner [Hz] (0: none)."),
+    pulse_fraction: float = typer.Option(0.0, help="Probability that a record carries a "
+                                         "near-fault velocity pulse (Mavroeidis & "
+                                         "Papageorgiou 2003), 0…1."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Synthetic records of the Rezaeian & Der Kiureghian (2008) stochastic model, written
     as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
-    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner)
+    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner,
+                                  pulse_fraction=pulse_fraction)
     if json_out:
         print_json({"directory": str(directory), "seed": seed,
                     "records": [p.name for p in paths],

@@ -23,7 +23,6 @@ from rockarch.cli._common import (
     TOL_OPT,
     WORKERS_OPT,
     Shape,
-    check_outputs,
     echo_err,
     guarded,
     p_grid,
@@ -32,6 +31,7 @@ from rockarch.cli._common import (
 )
 from rockarch.cli._sweep import open_sweep
 from rockarch.design import design_check
+from rockarch.output import check_outputs, staged
 
 
 @app.command("site-oas", short_help="Site OAS of a set of records: envelope and percentile.")
@@ -60,7 +60,7 @@ def site_oas(
 ) -> None:
     """Site OAS: slender-block OAS of every record, their envelope and percentile curve."""
     paths = list(records or []) + list(more or [])
-    check_outputs(out, plot)
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
     motions, hashes = site_mod.load_records(paths, units)
     ps = p_grid(None, p_min, p_max, p_steps)
     if ratio_steps < 2:
@@ -77,11 +77,12 @@ def site_oas(
     from rockarch.charsite import characteristic
 
     ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
-    site_mod.save(ds, out)
-    if plot is not None:
-        from rockarch.plot import plot_site, save_figure
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        site_mod.save(ds, out_tmp)
+        if plot is not None:
+            from rockarch.output.figures import plot_site, save_figure
 
-        save_figure(plot_site(ds), plot)
+            save_figure(plot_site(ds), plot_tmp)
     if json_out:
         print_json({"records": list(ds["record_name"].values), "p": ds["p"].values,
                     "envelope": ds["envelope"].values,
@@ -113,6 +114,11 @@ def design(
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
                               "(percentile), normalised (over p·Tm) or simplified (two "
                               "durations)."),
+    replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
+                                         "(uniform mass) or weighted (the funicular of the "
+                                         "arch's own mass)."),
+    replacement_mass: str = typer.Option("own", help="Replacement mass: own (its uniform "
+                                         "mass) or original (the arch's mass on its axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
     json_out: bool = JSON_OPT,
@@ -121,7 +127,7 @@ def design(
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
-    check_outputs(report)
+    check_outputs((report, "--report", "html"))
     if (site_file is None) == (not records):
         raise ValueError("give either --site FILE or --records DIR")
     if records:
@@ -137,7 +143,8 @@ def design(
         site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
-    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g)
+    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g,
+                       axis=replacement_axis, mass=replacement_mass)
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
@@ -154,13 +161,14 @@ def design(
 
             html_extra = fragility_html(frag, extra["fragility"])
     if report is not None:
-        from rockarch.report import write_report
+        from rockarch.output.report import write_report
 
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} "
                + (f"--site {site_file}" if site_file else
                   " ".join(f"--records {r}" for r in records))
-               + f" --thickness-rule {thickness_rule} --curve {curve} --g {g:g}")
+               + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
+               f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
         write_report(res, site_ds, report, command=cmd,
                      site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
@@ -171,8 +179,10 @@ def design(
     c = res.chosen
     typer.echo(f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = {thickness:g} m: "
                f"ap,min = {res.replacement.original.ap_min:.4f} m/s²")
-    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m, "
-               f"f = {c.rise:.4f} m, p = {c.p:.4f} 1/s, ap,min = {c.ap_min:.4f} m/s²")
+    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m "
+               f"(d/l' = {c.thickness / c.span:.4f}, d/l = {c.thickness / span:.4f}), "
+               f"l' = {c.span:.4f} m, f' = {c.rise:.4f} m, p = {c.p:.4f} 1/s, "
+               f"ap,min = {c.ap_min:.4f} m/s²")
     typer.echo(f"site {curve} at p: ap/ap,min = {res.ratio:.4f} -> safe PGA "
                f"{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
     if extra:
