@@ -86,6 +86,8 @@ def test_apply_scale_without_csv_is_an_error(folder):
      "line 2: column 'magnitude' should be a number"),
     (" Result ID, Record Sequence Number, Scale Factor\n 1, 6, -2\n",
      "scale factor must be > 0"),
+    (" Result ID, Record Sequence Number, Year\n 1, 6, inf\n",
+     "line 2: column 'year' should be a number"),
     (" Result ID, Record Sequence Number, Scale Factor, Magnitude, Vs30\n 1, 6\n",
      "truncated row"),
 ])

@@ -111,8 +111,9 @@ def test_records_synth_writes_a_suite_that_records_info_reads(tmp_path):
         assert rec.station == m.name and rec.event == "Synthetic RDK08 seed 5"
     params = (out / sy.PARAMETERS_FILE).read_text().splitlines()
     assert params[0].startswith("file,arias,d5_95") and len(params) == 4
-    res = CliRunner().invoke(app, ["records", "synth", str(tmp_path / "a" / "b")])
-    assert res.exit_code == 2 and "directory does not exist" in res.stderr
+    (tmp_path / "f").write_text("a file in the way")
+    res = CliRunner().invoke(app, ["records", "synth", str(tmp_path / "f" / "b")])
+    assert res.exit_code == 2 and "is a file" in res.stderr
     res = CliRunner().invoke(app, ["records", "synth", str(tmp_path / "p"), "--n", "1",
                                    "--pulse-fraction", "1"])
     assert res.exit_code == 0, res.output

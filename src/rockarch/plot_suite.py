@@ -1,5 +1,5 @@
 """Figures of a record suite: response spectra of its records (``rockarch records info
---plot``). Matplotlib, Agg backend (through :mod:`rockarch.plot`)."""
+--plot``). Agg canvases of :mod:`rockarch.output.figures` (no pyplot state)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from rockarch import intensity as im
-from rockarch.plot import plt
+from rockarch.output.figures import subplots
 from rockarch.suite import Suite
 
 #: Periods of the plotted spectra [s].
@@ -27,7 +27,7 @@ def plot_spectra(suite: Suite, periods: Sequence[float] = PLOT_PERIODS, *,
     sa = np.array([im.spectral_acceleration(m, per, damping) / (m.pga if normalise else 1.0)
                    for m in suite.motions])
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6.5, 4.2))
+        fig, ax = subplots(figsize=(6.5, 4.2))
     else:
         fig = ax.figure
     if len(suite) > 1:

@@ -346,16 +346,16 @@ PARAMETERS_FILE = "_synthetic_parameters.csv"
 def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
                 f_corner: float = F_CORNER, pulse_fraction: float = 0.0) -> list:
     """Write ``n`` synthetic records as ``.AT2`` files ``rdk-s{seed}-{k:03d}.AT2`` into
-    ``directory`` (created if its parent exists), with their model parameters in
+    ``directory`` (created with its missing parents), with their model parameters in
     :data:`PARAMETERS_FILE`. Returns the record paths."""
     from pathlib import Path
 
+    from rockarch.output import check_output_dir, write_text
     from rockarch.suite import write_at2
 
     directory = Path(directory)
-    if not directory.parent.resolve().is_dir():
-        raise ValueError(f"{directory.parent}: directory does not exist")
-    directory.mkdir(exist_ok=True)
+    check_output_dir(directory)
+    directory.mkdir(parents=True, exist_ok=True)
     paths, lines = [], []
     keys = list(RDKParameters.__dataclass_fields__)
     pulse_keys = [f"pulse_{k}" for k in MPPulse.__dataclass_fields__]
@@ -368,6 +368,6 @@ def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
         lines.append(",".join([path.name, *(f"{m.meta[k]:.10g}" for k in keys),
                                *(f"{m.meta[k]:.10g}" if k in m.meta else ""
                                  for k in pulse_keys)]))
-    (directory / PARAMETERS_FILE).write_text(
-        "\n".join([",".join(["file", *keys, *pulse_keys]), *lines]) + "\n")
+    write_text(directory / PARAMETERS_FILE,
+               "\n".join([",".join(["file", *keys, *pulse_keys]), *lines]) + "\n")
     return paths

@@ -9,8 +9,9 @@ import typer
 
 from rockarch import intensity, synthetic
 from rockarch.cli._app import app
-from rockarch.cli._common import JSON_OPT, check_outputs, float_list, guarded, print_json
+from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
+from rockarch.output import check_outputs
 from rockarch.suite import describe, read_suite
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
@@ -46,12 +47,12 @@ def info(
     PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
     in --json."""
     per = float_list("--periods", periods)
-    check_outputs(plot)
+    check_outputs((plot, "--plot", "png"))
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
     if plot is not None:
-        from rockarch.plot import save_figure
+        from rockarch.output.figures import save_figure
         from rockarch.plot_suite import plot_spectra
 
         save_figure(plot_spectra(suite, damping=damping), plot)
@@ -108,6 +109,7 @@ def synth(
     as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
+    check_outputs((directory, "DIRECTORY", "dir"))
     paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner,
                                   pulse_fraction=pulse_fraction)
     if json_out:
