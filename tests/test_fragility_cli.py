@@ -88,13 +88,16 @@ def test_bad_input_is_one_line(folder, extra, msg):
     assert len(res.stderr.strip().splitlines()) == 1
 
 
-def test_too_few_collapses_is_one_line(folder):
+def test_too_few_collapses_prints_the_points_and_no_fit(folder):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
                               str(folder), "--no-store", "--ratio-max", "1.1",
-                              "--ratio-steps", "2", "--t-free", "1"])
-    assert res.exit_code == 2
-    assert "collapse up to ap/ap,min = 1.1" in res.stderr
-    assert len(res.stderr.strip().splitlines()) == 1
+                              "--ratio-steps", "2", "--t-free", "1", "--json"])
+    assert res.exit_code == 0, res.output
+    assert res.stderr.startswith("warning: only 0 of 2 records collapse up to "
+                                 "ap/ap,min = 1.1")
+    out = json.loads(res.stdout)
+    assert out["median"] is None and out["beta"] is None and out["n_censored"] == 2
+    assert all(q["censored"] and q["im_collapse"] is None for q in out["points"])
 
 
 def test_empty_folder(tmp_path):

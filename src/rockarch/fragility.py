@@ -355,12 +355,18 @@ def bootstrap(collapse, censored_at=(), *, n: int = N_BOOTSTRAP, level: float = 
 # --------------------------------------------------------------------------- together
 
 
+class TooFewCollapses(ValueError):
+    """Fewer than two different collapse points: no lognormal can be fitted."""
+
+
+
 @dataclass(frozen=True)
 class Fragility:
-    """IDA, its lognormal fit and the bootstrap band (what ``rockarch fragility`` prints)."""
+    """IDA, its lognormal fit and the bootstrap band (what ``rockarch fragility`` prints);
+    ``fit`` is None when fewer than two records collapse (:class:`TooFewCollapses`)."""
 
     ida: IDAResult
-    fit: LognormalFit
+    fit: LognormalFit | None
     ci: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
@@ -371,9 +377,11 @@ class Fragility:
                    "im_limit": float(lim), "resurrections": int(n)}
                   for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit,
                                              r.resurrections, strict=True)]
-        out = {"im": r.im, "units": IM_UNITS[r.im], "median": self.fit.median,
-               "beta": self.fit.beta, "n_records": len(r.records),
-               "n_collapsed": self.fit.n_collapsed, "n_censored": self.fit.n_censored,
+        fit = self.fit
+        out = {"im": r.im, "units": IM_UNITS[r.im],
+               "median": None if fit is None else fit.median,
+               "beta": None if fit is None else fit.beta, "n_records": len(r.records),
+               "n_collapsed": int((~r.censored).sum()), "n_censored": int(r.censored.sum()),
                "system": r.system, "p": r.p, "ap_min": r.ap_min, "points": points,
                "ci": self.ci}
         if r.period is not None:
@@ -387,7 +395,7 @@ def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float =
     x = result.im_collapse[~result.censored]
     c = result.im_limit[result.censored]
     if np.unique(x).size < 2:
-        raise ValueError(f"only {x.size} of {len(result.records)} records collapse up to "
+        raise TooFewCollapses(f"only {x.size} of {len(result.records)} records collapse up to "
                          f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least two "
                          "different collapse points (raise the scan limit, e.g. "
                          "--ratio-max 10)")

@@ -36,8 +36,9 @@ def plot_fragility(frag: Fragility, im_range=None):
         ax.fill_between(np.asarray(ci["im"]) * f, ci["probability_lo"],
                         ci["probability_hi"], color="#6a9fd4", alpha=0.3, lw=0,
                         label=f"{100 * ci['level']:g} % bootstrap band")
-    ax.plot(grid * f, fit.probability(grid), "k-",
-            label=f"lognormal θ = {fit.median * f:.3g}, β = {fit.beta:.2f}")
+    if fit is not None:
+        ax.plot(grid * f, fit.probability(grid), "k-",
+                label=f"lognormal θ = {fit.median * f:.3g}, β = {fit.beta:.2f}")
     n = x.size
     order = np.sort(x[np.isfinite(x)])
     ax.plot(order * f, (np.arange(1, order.size + 1) - 0.5) / n, "o", ms=4, color="C3",

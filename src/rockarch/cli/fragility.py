@@ -111,7 +111,11 @@ def fragility(
         known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
         rng = (known.min() / 2, known.max() * 2)
     grid = np.geomspace(rng[0], rng[1], 41)
-    frag = fr.fit_ida(res, n_bootstrap=bootstrap, level=level, im_grid=grid)
+    try:
+        frag = fr.fit_ida(res, n_bootstrap=bootstrap, level=level, im_grid=grid)
+    except fr.TooFewCollapses as exc:  # the points are still the answer: print them
+        echo_err(f"warning: {exc}; no lognormal fit")
+        frag = fr.Fragility(res, None, {})
     if plot is not None:
         from rockarch.output.figures import save_figure
         from rockarch.plot_fragility import plot_fragility
@@ -135,6 +139,8 @@ def _print_table(frag: fr.Fragility) -> None:
                                strict=True):
         txt = f"{v:.4g}" if np.isfinite(v) else f"> {lim:.4g}"
         typer.echo(f"{name[:44]:<44} {txt:>15} {n:>14d}")
+    if fit is None:
+        return
     typer.echo(f"lognormal (maximum likelihood, {fit.n_censored} censored): median "
                f"{fit.median:.4g} {unit}, beta {fit.beta:.3f}")
     ci = frag.ci
