@@ -162,3 +162,15 @@ def test_ida_of_an_mdof_arch_is_its_oas_boundary():
     ds = ra.oas(sys_, m, p=[6.0], ratio=[1.0, 2.0, 4.0], tol=0.1)
     assert np.isfinite(res.ratio_collapse[0])
     assert res.ratio_collapse[0] == ds["boundary"].values[0]
+
+
+def test_likelihood_gradient_matches_finite_differences():
+    from scipy.optimize import approx_fprime
+
+    lx = np.log(_sample(2.0, 0.4, 40, 4))
+    lc = np.log(np.full(6, 2.5))
+    for params in ([0.3, -1.2], [0.7, -0.9], [1.4, 0.1]):
+        value, grad = fr._neg_loglik(np.array(params), lx, lc)
+        num = approx_fprime(np.array(params), lambda q: fr._neg_loglik(q, lx, lc)[0], 1e-7)
+        # forward differences of step 1e-7 on values ~1e2: error ~1e-5 relative
+        assert grad == pytest.approx(num, rel=1e-4, abs=1e-4)
