@@ -108,6 +108,8 @@ def design(
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
+    if curve not in ("envelope", "characteristic"):
+        raise ValueError(f"--curve must be envelope or characteristic, got {curve!r}")
     check_outputs(report)
     site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
