@@ -149,7 +149,7 @@ def test_cache_on_a_file_is_one_line_error(tmp_path):
         assert res.stderr.strip() == f"error: {f}: is a file, not a store directory"
 
 
-@pytest.mark.parametrize("command", ["oas", "site-oas"])
+@pytest.mark.parametrize("command", ["oas", "site-oas", "fragility"])
 def test_help_says_where_the_store_lives(command):
     text = " ".join(_invoke([command, "--help"]).stdout.split())
     assert ("Default: $ROCKARCH_CACHE, else $XDG_CACHE_HOME/rockarch, else "
