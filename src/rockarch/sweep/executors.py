@@ -255,6 +255,8 @@ class Executor:
             yield
         except Exception as exc:  # noqa: BLE001 - no scheduler, or not a Dask one
             why = (str(exc).splitlines() or [""])[0][:120] or type(exc).__name__
+            if not isinstance(exc, (OSError, TimeoutError)):  # e.g. garbage read as a frame
+                why = f"something answers there, but not a Dask scheduler ({why[:60]})"
             raise ValueError(f"cannot reach a Dask scheduler at {self.scheduler} "
                              f"(waited up to {CONNECT_TIMEOUT:g} s): {why}") from None
 
