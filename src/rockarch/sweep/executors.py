@@ -148,17 +148,32 @@ def run_chunk(system, motion, p, ratio, threads: int | None = None):
     ``threads`` limits the numba threads of this call (thread-local; None: unchanged).
     """
     if threads is None:
-        over, resp = system.run(motion, p, ratio)
+        over, resp = run_system(system, motion, p, ratio)
     else:
         import numba
 
         before = numba.get_num_threads()
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
         try:
-            over, resp = system.run(motion, p, ratio)
+            over, resp = run_system(system, motion, p, ratio)
         finally:
             numba.set_num_threads(before)
     return np.asarray(over, dtype=bool), np.asarray(resp, dtype=np.float64)
+
+
+def run_system(system, motion, p, ratio):
+    """``system.run(motion, p, ratio)``; a Ctrl-C inside a numba kernel stays a
+    KeyboardInterrupt (numba reports it as a SystemError "returned a result with an
+    exception set", which would print a traceback instead of the interruption)."""
+    try:
+        return system.run(motion, p, ratio)
+    except SystemError as exc:
+        cause, seen = exc, 0
+        while cause is not None and seen < 50:  # numba chains several SystemErrors
+            if isinstance(cause, KeyboardInterrupt):
+                raise KeyboardInterrupt from None
+            cause, seen = cause.__cause__ or cause.__context__, seen + 1
+        raise
 
 
 class Executor:
