@@ -8,9 +8,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from rockarch.sweep.executors import Executor, run_system
+from rockarch.sweep.executors import Executor
 from rockarch.sweep.keys import _base_hash, _key_of
 from rockarch.sweep.store import Store
+from rockarch.sweep.workers import run_system
 
 
 def run_chunks(system, motion, tasks: Sequence[tuple[np.ndarray, np.ndarray]], *,
