@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import typer
 
-from rockarch._validate import positive
+from rockarch._validate import in_range, positive
 from rockarch.arch.fourhinge import analyse
 from rockarch.arch.geometry import MASS_MODELS, make_arch
 from rockarch.arch.thrust import minimum_thickness
@@ -48,6 +49,9 @@ def arch(
     rise = positive("--rise", rise)
     g = positive("--g", g)
     check_blocks(blocks)
+    if not min_thickness and lambda_ != 0.0:
+        raise ValueError("--lambda is used only with --min-thickness")
+    lambda_ = in_range("--lambda", lambda_, 0.0, math.inf, hi_open=True)
     if mass_model not in MASS_MODELS[:2]:
         raise ValueError(f"--mass-model must be voussoir or axis, got {mass_model!r}")
     if min_thickness:
@@ -82,10 +86,11 @@ def arch(
            else "continuous (critical optimal mechanism)"),
         f"  ap,min = {res.ap_min:.4f} m/s² (lambda = {res.lambda_:.5f}; virtual work "
         f"g*Bv/Bh = {res.ap_min_vw:.4f})",
-        f"  p = {res.p:.4f} 1/s, delta = {res.delta:.5f} rad, Bv = {res.Bv:.5g}, "
+        f"  p = {res.p:.4f} 1/s, delta = {res.delta_end:.5f} rad (part {res.end_part}, "
+        f"Table 1), delta_u = {res.delta:.5f} rad (coordinate u), Bv = {res.Bv:.5g}, "
         f"Bh = {res.Bh:.5g}, A = {res.A:.5g}",
         f"  c1 = {res.c1:.4f}, c2 = {res.c2:.4f}, c3/c3' = {res.c3:.3f}/{res.c3p:.3f}, "
-        f"c4 = {res.c4:.4f}",
+        f"c4 = {res.c4:.4f} (c4_u = {res.c4_u:.4f})",
         "  hinges: " + ", ".join(f"({h.x:.3f}, {h.y:.3f}) {h.side}" for h in res.hinges),
     ]
     if plot:

@@ -10,25 +10,39 @@ import typer
 from rockarch import spectra
 from rockarch.cli._app import app
 from rockarch.cli._common import (
+    ABUT_OPT,
+    ASSEMBLY_OPT,
+    BAY_OPT,
+    BLOCK_OPT,
+    COLONNADE_OPT,
+    COLUMN_OPT,
     CYCLES_OPT,
     DASK_WORKERS_OPT,
+    FRICTION_OPT,
     G_OPT,
     JSON_OPT,
+    LINTEL_OPT,
     NO_STORE_OPT,
     PERIOD_OPT,
+    PIER_BLOCKS_OPT,
+    PIER_H_OPT,
+    PIER_W_OPT,
     RECORD_OPT,
     SCHEDULER_OPT,
     SIGNAL_OPT,
+    SPANS_OPT,
     STORE_OPT,
     TFREE_OPT,
     TOL_OPT,
     UNITS_OPT,
+    WALL_OPT,
     WORKERS_OPT,
     Shape,
     Signal,
     System,
     echo_err,
     guarded,
+    mdof_structure,
     motion_shape,
     p_grid,
     print_json,
@@ -55,6 +69,11 @@ def oas(
     blocks: int = typer.Option(None, help="fourhinge: voussoirs (critical mechanism); "
                                "default the continuous arch (critical optimal). mdof: "
                                "voussoirs (required)."),
+    column: str = COLUMN_OPT, friction: float = FRICTION_OPT, spans: int = SPANS_OPT,
+    pier_height: float = PIER_H_OPT, pier_width: float = PIER_W_OPT,
+    pier_blocks: int = PIER_BLOCKS_OPT, abutments: bool = ABUT_OPT, wall: str = WALL_OPT,
+    block: str = BLOCK_OPT, colonnade: int = COLONNADE_OPT, bay: float = BAY_OPT,
+    lintel: float = LINTEL_OPT, assembly: Path = ASSEMBLY_OPT,
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
@@ -84,11 +103,12 @@ def oas(
     Pulses have peak ap = ratio·ap,min; a record is scaled so that its PGA = ratio·ap,min.
     For mechanisms p varies by scaling the structure (p ∝ 1/sqrt(size), same shape).
     """
+    structure = mdof_structure(locals())
     sysobj = make_system(system.value, alpha=alpha, shape=value(shape),
                          rise_over_span=rise_over_span,
                          thickness_over_span=thickness_over_span, blocks=blocks,
                          mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
-                         restitution=restitution, t_free=t_free)
+                         restitution=restitution, t_free=t_free, **structure)
     shape_motion = motion_shape(signal, period, cycles, record, units)
     ps = p_grid(p, p_min, p_max, p_steps)
     ratios = ratio_grid(ratio_min, ratio_max, ratio_steps)

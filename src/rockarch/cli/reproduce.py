@@ -18,7 +18,7 @@ def reproduce_command(
     quick: bool = typer.Option(False, "--quick", help="Coarse grids (about a minute)."),
     json_out: bool = JSON_OPT,
 ) -> None:
-    """The paper's tables and figures (Tables 1-2, Figs. 15-17 and 19, the Sect. 9 example)
+    """The paper's tables and figures (Figs. 2-3, Tables 1-2, Figs. 15-17 and 19, Sect. 9)
     into OUT, with an index.html showing paper vs computed side by side."""
     from rockarch.reproduce import reproduce
 
