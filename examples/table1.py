@@ -91,9 +91,9 @@ def variants() -> None:
         row = rows.get((0.3, dl))
         prod = (f"{ref[0] * ref[4]:6.4f} {row['paper_c1c4_ratio']:5.2f}" if ref
                 else "   -      -")
-        eq12 = row["ours"]["c1c4_eq12"] if row else float("nan")
+        eq12 = f"{row['ours']['c1c4_eq12']:7.4f}" if row else "    -  "
         print(f"{dl:6.4f} | {rv.c1:7.4f} {ra.c1:7.4f} {rv.c2:7.4f} {ra.c2:7.4f} | "
-              f"{rv.c4:6.4f} {dl / rv.delta_linear:7.4f} {rv.c4_u:6.4f} | {eq12:7.4f} {prod}")
+              f"{rv.c4:6.4f} {dl / rv.delta_linear:7.4f} {rv.c4_u:6.4f} | {eq12} {prod}")
     print("paper c1*c4 / Eq. 12 over all of Table 1: "
           + ", ".join(f"{k[0]}/{k[1]}: {r['paper_c1c4_ratio']:.2f}" for k, r in rows.items()))
 

@@ -59,6 +59,12 @@ def _share(lower: np.ndarray, upper: np.ndarray) -> float:
     return float(np.mean(lower[both] <= upper[both] * (1 + _SAFE)))
 
 
+def _where_above(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> list[float]:
+    """The p where ``a`` is above ``b`` by more than :data:`_SAFE` (a claim a <= b fails)."""
+    bad = (a > b * (1 + _SAFE)) & (np.isfinite(a) | np.isfinite(b))
+    return [round(float(x), 3) for x in p[bad]]
+
+
 def _below(a: np.ndarray, b: np.ndarray) -> float:
     """Share of p where ``a`` is clearly below ``b`` (by more than :data:`_SAFE`)."""
     both = np.isfinite(a) | np.isfinite(b)
@@ -126,7 +132,8 @@ def fig3a(path, *, n_p: int = 40, n_ratio: int = 57, tol: float = 1e-3,
             ax.plot(p, np.where(np.isfinite(b), b, np.nan), lw=1.8 if a == FIG3_ALPHAS[0]
                     else 1.1, label=f"alpha = {a:g}")
             if a != FIG3_ALPHAS[0]:
-                rows.append({"signal": name, "alpha": a, "slender_safe": _share(slender, b)})
+                rows.append({"signal": name, "alpha": a, "slender_safe": _share(slender, b),
+                             "p_not": _where_above(p, slender, b)})
         _boundary_axes(ax, f"{name}: slender vs less slender blocks", "p [1/s]")
     _save(fig, path)
     return rows
@@ -161,6 +168,7 @@ def fig3b(path, *, n_p: int = 20, n_ratio: int = 57, tol: float = 1e-3,
             rows.append({"signal": name, "blocks": n, "ap_min": col.ap_min,
                          "p_ref": col.p_ref, "column_safer": _share(mono, b),
                          "column_weaker": _below(b, mono),
+                         "p_weaker": _where_above(p, mono, b),
                          "mean_rel": float(np.mean(b[both] / mono[both] - 1)) if both.any()
                          else math.nan})
         _boundary_axes(ax, f"{name}: columns vs monolith, alpha = {FIG3B_ALPHA:g}, "

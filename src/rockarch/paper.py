@@ -225,10 +225,14 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
     return rows
 
 
-def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
+def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> list[dict]:
     """Fig. 19: OAS of the Sect. 8 arch (four-hinge mechanism and, unless ``mdof_blocks`` is
     None, the MDOF arch of that many voussoirs) and of the blocks of both replacement
-    catenaries (each block on its own p and ap,min)."""
+    catenaries (each block on its own p and ap,min).
+
+    Returns one row per signal and curve: the share of p at which the curve is at or below
+    the reference (the MDOF arch, else the four-hinge mechanism) and the mean relative gap.
+    """
     arch = circular(SECT8["span"], SECT8["rise"], SECT8["span"] * SECT8["d_over_l"])
     rep = rep if rep is not None else replacement(arch)
     p = np.linspace(1.0, 10.0, n_p)
@@ -246,9 +250,17 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
         curves.append((f"block of the {r.rule} replacement",
                         systems.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
     fig, axes = subplots(1, 3, figsize=(15, 4.4), sharey=True)
+    rows = []
     for ax, sig in zip(axes, SIGNALS, strict=True):
+        bounds = []
         for label, system, style in curves:
-            ax.plot(p, _boundary(system, sig, p, ratio), style, lw=1.5, label=label)
+            bounds.append(_boundary(system, sig, p, ratio))
+            ax.plot(p, bounds[-1], style, lw=1.5, label=label)
+        ref = bounds[1] if mdof_blocks is not None else bounds[0]
+        for (label, _, _), b in zip(curves, bounds, strict=True):
+            if b is not ref:
+                safe, rel = _compare(ref, b)
+                rows.append({"signal": sig, "curve": label, "safe": safe, "mean_rel": rel})
         ax.set_title(f"{sig}, T = 1 s", fontsize=9)
         ax.set_xlabel("p [1/s]")
         ax.grid(alpha=0.3)
@@ -258,6 +270,7 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
                  "its replacement blocks", fontsize=10)
     fig.tight_layout()
     save_figure(fig, path)
+    return rows
 
 
 def sect9(out: Path, n_p: int = 100) -> dict:

@@ -61,6 +61,10 @@ def _table2_html(t2: dict) -> str:
                   rows)
 
 
+def _cells(ps: list[float]) -> str:
+    return ", ".join(f"{x:g}" for x in ps) if ps else "–"
+
+
 def _background(out: Path, quick: bool, parts: list[str], log) -> None:
     """Figs. 2 and 3: the block and column claims the design method rests on."""
     log("Fig. 2 …")
@@ -77,9 +81,10 @@ def _background(out: Path, quick: bool, parts: list[str], log) -> None:
     parts.append("<h2>Fig. 3a: the slender block is on the safe side</h2>"
                  "<img src='fig3a.png' width='100%'>"
                  + _table(["signal", "less slender block alpha",
-                           "p where the slender block's boundary is lower or equal"],
-                          [[r["signal"], r["alpha"], f"{100 * r['slender_safe']:.0f} %"]
-                           for r in rows3a]))
+                           "p where the slender block's boundary is lower or equal",
+                           "p [1/s] where not"],
+                          [[r["signal"], r["alpha"], f"{100 * r['slender_safe']:.0f} %",
+                            _cells(r["p_not"])] for r in rows3a]))
     log("Fig. 3b (MDOF columns) …")
     rows3b = background.fig3b(out / "fig3b.png", n_p=5 if quick else 20,
                               n_ratio=15 if quick else 57, tol=2e-2 if quick else 1e-3,
@@ -87,10 +92,11 @@ def _background(out: Path, quick: bool, parts: list[str], log) -> None:
     parts.append("<h2>Fig. 3b: columns against the monolithic block</h2>"
                  "<img src='fig3b.png' width='100%'>"
                  + _table(["signal", "blocks", "p where the column is at least as safe",
-                           "p where it is weaker", "mean boundary column / monolith − 1"],
+                           "p where it is weaker", "mean boundary column / monolith − 1",
+                           "p [1/s] where weaker"],
                           [[r["signal"], r["blocks"], f"{100 * r['column_safer']:.0f} %",
-                            f"{100 * r['column_weaker']:.0f} %", f"{r['mean_rel']:+.3f}"]
-                           for r in rows3b]))
+                            f"{100 * r['column_weaker']:.0f} %", f"{r['mean_rel']:+.3f}",
+                            _cells(r["p_weaker"])] for r in rows3b]))
 
 
 def reproduce(out, *, quick: bool = False,
@@ -152,9 +158,12 @@ def reproduce(out, *, quick: bool = False,
     for section in extra_sections or []:
         parts.append(section(out, quick))
     log("Fig. 19 …")
-    paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
+    rows19 = paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
                 mdof_blocks=blocks)
-    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>")
+    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>" + _table(
+        ["signal", "curve", "p where at or below the MDOF arch", "mean relative gap"],
+        [[r["signal"], r["curve"], f"{100 * r['safe']:.0f} %", f"{100 * r['mean_rel']:+.1f} %"]
+         for r in rows19]))
     log("Sect. 9 …")
     s9 = paper.sect9(out, n_p=40 if quick else 100)
     parts.append(

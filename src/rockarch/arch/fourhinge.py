@@ -8,7 +8,7 @@ direction = +1, i.e. a ground acceleration to the right). Part 3 turns by v(u) a
 |H3(v) - H2(u)| = |H3 - H2| (closed form, branch through v(0) = 0); part 2 follows as the
 rigid motion carrying (H2, H3) to (H2(u), H3(v)).
 
-With these kinematics (physics note Sect. 3):
+With these kinematics (docs/theory.md §3):
 
     A(u) = sum_j m_j (x_j'^2 + y_j'^2) + I_j phi_j'^2        (' = d/du)
     V(u) = g sum_j m_j y_j(u)
@@ -172,27 +172,31 @@ def kinematics(mech: FourHinge, u, *, second: bool = False) -> Kinematics:
 
 
 def generalized_inertia(mech: FourHinge, u) -> np.ndarray:
-    """A(u) = sum m (x'^2 + y'^2) + I phi'^2 (physics note Sect. 3; paper Eq. 12–13)."""
+    """A(u) = sum m (x'^2 + y'^2) + I phi'^2 (docs/theory.md Eq. 3.2; paper Eqs. 12–13)."""
     k = kinematics(mech, u)
     m, i = mech.mass[:, None], mech.inertia[:, None]
     return np.sum(m * (k.dx**2 + k.dy**2) + i * k.dphi**2, axis=0)
 
 
 def generalized_inertia_du(mech: FourHinge, u) -> np.ndarray:
-    """A'(u) = 2 sum m (x' x'' + y' y'') + 2 I phi' phi'' (physics note Sect. 3)."""
+    """A'(u) = 2 sum m (x' x'' + y' y'') + 2 I phi' phi''.
+
+    The u-derivative of docs/theory.md Eq. 3.2."""
     k = kinematics(mech, u, second=True)
     m, i = mech.mass[:, None], mech.inertia[:, None]
     return 2 * np.sum(m * (k.dx * k.d2x + k.dy * k.d2y) + i * k.dphi * k.d2phi, axis=0)
 
 
 def potential(mech: FourHinge, u) -> np.ndarray:
-    """V(u) = g sum m y(u), relative to u = 0 (physics note Sect. 3)."""
+    """V(u) = g sum m y(u), relative to u = 0 (docs/theory.md Eq. 3.2)."""
     k = kinematics(mech, u)
     return mech.g * np.sum(mech.mass[:, None] * (k.y - mech.centroid[:, 1:2]), axis=0)
 
 
 def potential_du(mech: FourHinge, u) -> np.ndarray:
-    """dV/du = g sum m y'(u): gravity's resisting generalised moment (physics note Sect. 3)."""
+    """dV/du = g sum m y'(u): gravity's resisting generalised moment.
+
+    B_v of docs/theory.md Eq. 3.3 at u = 0."""
     k = kinematics(mech, u)
     return mech.g * np.sum(mech.mass[:, None] * k.dy, axis=0)
 

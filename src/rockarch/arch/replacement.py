@@ -86,7 +86,8 @@ class ReplacementArch:
                 "span_over_original_span": self.span / self.original_span,
                 "rise_over_span": self.rise / self.span,
                 "springings": self.springings.tolist(),
-                "delta": m.delta, "c1": m.c1, "c2": m.c2, "R_block": self.R_block}
+                "delta": m.delta_end, "delta_u": m.delta, "c1": m.c1, "c2": m.c2,
+                "R_block": self.R_block}
 
 
 def _shifted_weights(w: HorizontalWeights, band: Band) -> HorizontalWeights:

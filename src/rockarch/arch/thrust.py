@@ -1,4 +1,4 @@
-"""Thrust-line limit analysis of a voussoir arch as a 4-variable LP (physics note Sect. 4).
+"""Thrust-line limit analysis of a voussoir arch as a 4-variable LP (docs/theory.md Eqs. 4.1–4.3).
 
 Unknowns z = (H, V, M0, lambda): the left springing reaction (H, V), its moment M0 about the
 first joint's axis point, and the horizontal load multiplier. Every voussoir k carries its weight
@@ -47,7 +47,7 @@ class Hinge:
 
 @dataclass(frozen=True)
 class ThrustResult:
-    """Result of the limit analysis (physics note Sect. 4).
+    """Result of the limit analysis (docs/theory.md §4).
 
     Attributes
     ----------

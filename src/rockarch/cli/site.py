@@ -74,6 +74,9 @@ def site_oas(
                                tol=tol, hashes=hashes, t_free=t_free,
                                progress=sys.stderr.isatty(), executor=executor,
                                store=chunk_store)
+    from rockarch.charsite import characteristic
+
+    ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
     with staged(out, plot) as (out_tmp, plot_tmp):
         site_mod.save(ds, out_tmp)
         if plot is not None:
@@ -110,7 +113,7 @@ def design(
                                        "equivalent (same ap,min) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
                               "(percentile), normalised (over p·Tm) or simplified (two "
-                              "durations); the last two need --records."),
+                              "durations)."),
     replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
                                          "(uniform mass) or weighted (the funicular of the "
                                          "arch's own mass)."),
@@ -145,6 +148,18 @@ def design(
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
+    extra, html_extra = {}, ""
+    if records:
+        from rockarch import fragility as fr
+
+        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
+                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                                 ratio=site_ds["ratio"].values)
+        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
+        if report is not None:
+            from rockarch.plot_fragility import fragility_html
+
+            html_extra = fragility_html(frag, extra["fragility"])
     if report is not None:
         from rockarch.output.report import write_report
 
@@ -155,17 +170,9 @@ def design(
                + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
                f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
         write_report(res, site_ds, report, command=cmd,
-                     site_path=str(site_file) if site_file else None,
+                     site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
-    extra = {}
-    if records:
-        from rockarch import fragility as fr
-
-        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
-                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
-                                 ratio=site_ds["ratio"].values)
-        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
     if json_out:
         print_json({**res.to_dict(), **extra})
         return
