@@ -54,14 +54,20 @@ def fail(message: str) -> None:
 
 
 def guarded(func: Callable) -> Callable:
-    """Decorate a CLI command: ValueError / OSError become one line on stderr and exit 2."""
+    """Decorate a CLI command: ValueError / OSError become one line on stderr and exit 2
+    (as do MemoryError and OverflowError, which the limits of rockarch.limits should
+    prevent)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
         except (ValueError, OSError) as exc:
-            fail(str(exc) if str(exc) else exc.__class__.__name__)
+            fail(" ".join(str(exc).split()) if str(exc) else exc.__class__.__name__)
+        except MemoryError:
+            fail("out of memory: use a shorter motion or --t-free, or fewer grid points")
+        except OverflowError as exc:
+            fail(f"a number is too large ({exc}): check the sizes and --p")
 
     return wrapper
 
@@ -107,6 +113,9 @@ def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
     if record is not None and signal is not None:
         raise ValueError("give either --record or --signal/--period, not both")
     if record is not None:
+        if units is not None and record.suffix.lower() == ".at2":
+            raise ValueError(f"{record}: a PEER .AT2 file states its own units; leave out "
+                             "--units (it applies to two-column records)")
         return read_record(record, units=units)
     if signal is None:
         raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
@@ -151,13 +160,6 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     if not (0 <= ratio_min <= ratio_max and math.isfinite(ratio_max)):
         raise ValueError(f"need 0 <= --ratio-min <= --ratio-max, got {ratio_min}, {ratio_max}")
     return np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
-
-
-def check_outputs(*paths: Path | None) -> None:
-    """Every output path's folder exists (checked before any computation)."""
-    for path in paths:
-        if path is not None and not path.resolve().parent.is_dir():
-            raise ValueError(f"{path.parent}: directory does not exist")
 
 
 def echo_err(msg: str) -> None:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import numpy as np
 import typer
 
 from rockarch import spectra
@@ -41,7 +40,6 @@ from rockarch.cli._common import (
     Shape,
     Signal,
     System,
-    check_outputs,
     echo_err,
     guarded,
     mdof_structure,
@@ -51,7 +49,9 @@ from rockarch.cli._common import (
     ratio_grid,
     value,
 )
-from rockarch.sweep import open_sweep
+from rockarch.cli._sweep import open_sweep
+from rockarch.output import check_outputs, staged
+from rockarch.output.tables import boundary_table
 from rockarch.systems import system as make_system
 
 
@@ -112,20 +112,20 @@ def oas(
     shape_motion = motion_shape(signal, period, cycles, record, units)
     ps = p_grid(p, p_min, p_max, p_steps)
     ratios = ratio_grid(ratio_min, ratio_max, ratio_steps)
-    check_outputs(out, plot)
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
     with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
                     store_dir=store, no_store=no_store, n_sims=ps.size * ratios.size,
                     echo=echo_err) as (executor, chunk_store):
         ds = spectra.compute_oas(sysobj, shape_motion, ps, ratios, tol=tol,
                                  progress=progress and sys.stderr.isatty(),
                                  executor=executor, store=chunk_store)
-    if out is not None:
-        spectra.save(ds, out)
-    if plot is not None:
-        from rockarch.plot import plot_oas, save_figure
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        if out is not None:
+            spectra.save(ds, out_tmp)
+        if plot is not None:
+            from rockarch.output.figures import plot_oas, save_figure
 
-        ax = plot_oas(ds)
-        save_figure(ax.figure, plot)
+            save_figure(plot_oas(ds).figure, plot_tmp)
     if json_out:
         print_json({
             "p": ds["p"].values,
@@ -135,10 +135,7 @@ def oas(
         })
         return
     typer.echo(f"OAS of {sysobj.name} for {shape_motion.name}")
-    typer.echo(f"{'p [1/s]':>10}  {'boundary ap/ap,min':>20}")
-    for pv, bv in zip(ds["p"].values, ds["boundary"].values, strict=True):
-        txt = f"{bv:.4f}" if np.isfinite(bv) else f"> {ratios[-1]:g} (none in range)"
-        typer.echo(f"{pv:>10.4g}  {txt:>20}")
+    typer.echo("\n".join(boundary_table(ds["p"].values, ds["boundary"].values, ratios[-1])))
     for path in (out, plot):
         if path is not None:
             typer.echo(f"wrote {path}")

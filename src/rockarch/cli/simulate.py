@@ -43,13 +43,13 @@ from rockarch.cli._common import (
     WALL_OPT,
     Shape,
     Signal,
-    check_outputs,
     guarded,
     mdof_structure,
     motion_shape,
     print_json,
     value,
 )
+from rockarch.output import check_outputs
 from rockarch.systems import scale_to_ratio
 from rockarch.systems import system as make_system
 
@@ -59,10 +59,9 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     """Scale the motion to a peak of ratio·ap,min, run, then print JSON or a summary."""
     shape = motion_shape(signal, period, cycles, record, units)
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
-    check_outputs(plot)
     resp = sysobj.simulate(shape, ratio=ratio)
     if plot is not None:
-        from rockarch.plot import plot_response, save_figure
+        from rockarch.output.figures import plot_response, save_figure
 
         save_figure(plot_response(resp, mot), plot)
     s = {**resp.to_dict(), **(extra or {})}
@@ -93,6 +92,7 @@ def simulate_block(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rigid block (exact Housner equation) on a pulse or a record."""
+    check_outputs((plot, "--plot", "png"))
     if width is None and height is None and (p is None or alpha is None):
         raise ValueError("give the block: --p P --alpha A (or --width B --height H)")
     sysobj = make_system("block", alpha=alpha, p=p, width=width, height=height,
@@ -118,6 +118,7 @@ def simulate_fourhinge(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate the four-hinge mechanism of an arch (exact linkage kinematics, Sect. 5)."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("fourhinge", shape=shape.value, span=positive("--span", span),
                          rise=positive("--rise", rise),
                          thickness=positive("--thickness", thickness), blocks=blocks, g=g,
@@ -141,6 +142,7 @@ def simulate_frame(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rocking frame: two rigid columns and a rigid lintel (paper Fig. 1)."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("frame", alpha=alpha, p=p, mass_ratio=mass_ratio, g=g,
                          restitution=restitution, t_free=t_free)
     mech = sysobj.mechanism
@@ -161,6 +163,7 @@ def simulate_sdof(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate any SDOF mechanism given by (p, delta, ap,min) (equivalence form, ref. [13])."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("sdof", p=p, delta=delta, ap_min=ap_min, g=g,
                          restitution=restitution, t_free=t_free)
     _run(sysobj, sysobj.name, signal, period, cycles, record, units, ratio, plot, json_out)
@@ -204,17 +207,20 @@ def simulate_mdof(
     signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
     record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
     t_free: float = TFREE_OPT, g: float = G_OPT, h_factor: float = MDOF_H_OPT,
-    gap_tol: float = MDOF_TOL_OPT, json_out: bool = JSON_OPT,
+    gap_tol: float = MDOF_TOL_OPT, plot: Path = typer.Option(
+        None, help="Write a PNG of the largest block rotation / delta and a_g over time."),
+    json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a multi-block structure whose joints open, close and (with --friction)
     slide: an arch (alone, on piers, a bridge), a column, a wall, a colonnade, a JSON file.
 
     --ratio is relative to the structure's ap,min (limit analysis, friction included).
     """
+    check_outputs((plot, "--plot", "png"))
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
                           t_free, h_factor, gap_tol)
     _run(sysobj, _mdof_header(sysobj.assembly), signal, period, cycles, record, units, ratio,
-         None, json_out, extra={"ap_min": sysobj.ap_min})
+         plot, json_out, extra={"ap_min": sysobj.ap_min})
 
 
 @app.command(short_help="GIF of an MDOF arch or column in motion.")
@@ -232,21 +238,28 @@ def animate(
     record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
     t_free: float = typer.Option(3.0, help="Free motion after the ground motion ends [s]."),
     g: float = G_OPT, h_factor: float = MDOF_H_OPT, gap_tol: float = MDOF_TOL_OPT,
-    fps: int = typer.Option(20, help="Frames per second."),
-    frames: int = typer.Option(150, help="Largest number of frames."),
-    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1)."),
+    fps: int = typer.Option(20, help="Frames per second of simulated time (the GIF plays "
+                            "in real time)."),
+    frames: int = typer.Option(150, help="Largest number of frames (when fps × duration is "
+                               "larger, this many, spread evenly over the motion)."),
+    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1); the held "
+                                  "last frame is magnified further when its displacements "
+                                  "would be too small to see (the factor is in its title)."),
+    progress: bool = typer.Option(None, "--progress/--no-progress",
+                                  help="Progress bar on stderr (default: when stderr is a "
+                                  "terminal)."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Animate an MDOF arch or column on a ground motion: blocks, open joints, a_g(t)."""
-    from rockarch.mdof.animate import animate as write_gif
+    from rockarch.output.animation import animate as write_gif
+    from rockarch.output.animation import check_options
 
+    check_options(fps, frames, magnify)
+    check_outputs((out, "--out", "gif"))
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
                           t_free, h_factor, gap_tol)
-    if out.suffix.lower() != ".gif":
-        raise ValueError(f"--out must be a .gif file, got {out}")
-    check_outputs(out)
     resp = sysobj.simulate(motion_shape(signal, period, cycles, record, units), ratio=ratio)
-    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify)
+    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify, progress=progress)
     if json_out:
         print_json({**resp.to_dict(), "out": str(out)})
         return

@@ -57,6 +57,7 @@ class GraphModel(NamedTuple):
     rb: np.ndarray  # (nj, 2, 2) corners relative to body b (absolute for the ground)
     n0: np.ndarray  # (nj, 2) reference normals (turn with body a)
     mu: np.ndarray  # (nj,) friction coefficients (inf: no sliding)
+    chain: bool  # joint k joins body k-1 to body k: banded exact contact solve
     thick_min: float
     delta_ref: float
     g: float
@@ -74,6 +75,6 @@ def graph_model(assembly: Assembly) -> GraphModel:
                                                        cen[bodies][:, None, :], 0.0))
 
     return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb, rel(ba),
-                      rel(bb), _f(assembly.normal), _f(assembly.mu),
+                      rel(bb), _f(assembly.normal), _f(assembly.mu), assembly.is_chain,
                       float(assembly.thickness.min()), float(assembly.delta_ref),
                       float(assembly.g))

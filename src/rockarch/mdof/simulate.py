@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch import limits
 from rockarch._validate import in_range
 from rockarch.constants import GAP_TOL, T_FREE
 from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
@@ -89,6 +90,23 @@ def _motion_arrays(motion: GroundMotion | None):
             np.ascontiguousarray(motion.a, dtype=float), motion.name, float(motion.duration))
 
 
+def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: int
+          ) -> tuple[int, int]:
+    """Time steps of a simulation and the recording stride, known before anything is
+    allocated: at most :func:`rockarch.limits.max_mdof_steps` steps (else ValueError), a
+    history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES` (every k-th step recorded
+    above it; the simulation itself is unchanged)."""
+    need = t_end / h
+    if not need <= limits.max_mdof_steps():
+        raise limits.too_many(f"an MDOF simulation of {t_end:.6g} s at h = {h:.3g} s", need,
+                              "mdof_steps", limits.max_mdof_steps(),
+                              "lower --t-free or the motion's duration")
+    n_steps = int(math.ceil(need))
+    per_sample = 8 * (2 + 3 * n_blocks) + n_joints
+    rec = max(int(record_every), 1, math.ceil(n_steps * per_sample / limits.MAX_HISTORY_BYTES))
+    return n_steps, rec
+
+
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
              t_free: float = T_FREE, h_factor: float = H_FACTOR, gap_tol: float = GAP_TOL,
              record_every: int = 1) -> MDOFResponse:
@@ -96,6 +114,8 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
     Free motion continues ``t_free`` s after the motion ends, or until rest or collapse.
+    ``record_every``: record every k-th step (raised when the history would exceed
+    :data:`rockarch.limits.MAX_HISTORY_BYTES`).
     """
     check_settings(t_free, h_factor, gap_tol)
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
@@ -105,10 +125,9 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     h = h_factor / p_act
     tk, ak, name, duration = _motion_arrays(motion)
     t_end = duration + t_free
-    n_steps = int(math.ceil(t_end / h))
-    rec = max(int(record_every), 1)
-    cap = n_steps // rec + 2
     nb_, nj = assembly.n_blocks, assembly.n_joints
+    n_steps, rec = _plan(t_end, h, nb_, nj, record_every)
+    cap = n_steps // rec + 2
     out_t, out_q = np.zeros(cap), np.zeros((cap, nb_, 3))
     out_s, out_e = np.zeros((cap, nj), dtype=np.int8), np.zeros(cap)
     if uses_chain_stepper(assembly):
