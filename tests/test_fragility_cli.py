@@ -118,7 +118,8 @@ def test_design_with_records(tmp_path):
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
                               "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
                               "--curve", "simplified", "--json", "--report",
-                              str(tmp_path / "r.html")])
+                              str(tmp_path / "r.html"), "--save-site",
+                              str(tmp_path / "site.nc")])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     f = out["fragility"]
@@ -127,6 +128,10 @@ def test_design_with_records(tmp_path):
     assert f["pga_at_probability"]["probability"] == 0.1
     assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
+    from rockarch import site
+
+    saved = site.load(tmp_path / "site.nc")
+    assert saved.sizes["record"] == 2 and "simplified" in saved
     page = (tmp_path / "r.html").read_text()
     assert "Fragility of the replacement" in page and "--records" in page
 
