@@ -175,6 +175,8 @@ def test_vertical_components_are_left_out_unless_asked(folder_csv):
     assert len(suite.read_suite(folder_csv, vertical=True)) == 3
     only = suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], vertical=True)
     assert only[0].component == "270"  # the header's component (this is a copy of 270)
+    motions, hashes = site.load_records([folder_csv])  # site-oas reads the same records
+    assert len(motions) == 2 and len(set(hashes)) == 2
     with pytest.raises(ValueError, match="every record is a vertical component"):
         suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], search_results=FIXTURE)
 

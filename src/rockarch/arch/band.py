@@ -181,6 +181,8 @@ class _Contour:
 def _evaluate(contour: _Contour, yfun, params, samples: int = _AXIS_SAMPLES
               ) -> tuple[float, np.ndarray, np.ndarray]:
     y0, a, xm = params
+    if not a > 0:
+        return -10.0 * contour.scale, contour.intrados[0], contour.intrados[-1]
 
     def yx(x):
         return yfun(x, y0, a, xm)
@@ -194,7 +196,7 @@ def _evaluate(contour: _Contour, yfun, params, samples: int = _AXIS_SAMPLES
     return min(h, h + pen_l + pen_r), left, right
 
 
-def _start(arch: Arch, axis: str, yfun, w: HorizontalWeights) -> tuple[float, float]:
+def _start(arch: Arch, axis: str, yfun) -> tuple[float, float]:
     """(y0, a) of the family's axis through both springings with the arch's rise."""
     span, rise = arch.span, arch.rise
     xm = 0.5 * span
@@ -225,7 +227,7 @@ def lower_bound_band(original: Arch, *, axis: str = "catenary",
     w = weights if weights is not None else mass_per_horizontal_length(original)
     contour = _Contour(original)
     yfun = _family(axis, w)
-    y00, a0 = _start(original, axis, yfun, w)
+    y00, a0 = _start(original, axis, yfun)
     d0 = 2 * contour.scale
     xm0 = 0.5 * (contour.mid[0, 0] + contour.mid[-1, 0])
     # coarse grid for a start inside the contour, then Nelder–Mead on the clearance
