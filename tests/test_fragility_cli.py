@@ -78,6 +78,13 @@ def _check_contract(folder, tmp_path):
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
     (["--level", "95"], "--level must lie in (0, 1)"),
+    (["--p", "0"], "p must be a finite number > 0"),
+    (["--p", "nan"], "p must be a finite number > 0"),
+    (["--alpha", "-1"], "alpha"),
+    (["--im", "sa", "--period", "-1"], "--period must be a finite number > 0"),
+    (["--im-range", "0.1,x"], "--im-range"),
+    (["--bootstrap", "-1"], "--bootstrap must be >= 0"),
+    (["--records", "/nonexistent/folder"], "no such file or folder"),
     (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
 ])
 def test_bad_input_is_one_line(folder, extra, msg):
