@@ -14,8 +14,8 @@ from rockarch.arch import weighted_catenary as wcat
 from rockarch.arch.replacement import replacement
 from rockarch.cli import app
 from rockarch.design import design_check
+from rockarch.output.report import write_report
 from rockarch.records import bundled_record_path
-from rockarch.report import write_report
 
 runner = CliRunner()
 

@@ -193,6 +193,7 @@ def test_energy_never_increases_in_free_motion():
         assert np.max(e[1:] - np.minimum.accumulate(e)[:-1]) <= 1e-4 * abs(e[0])
 
 
+@pytest.mark.slow  # 4-9 s: a convergence study
 def test_oas_converges_with_time_step():
     # halving h changes < 1 % of the cells of a 20-voussoir arch's map
     a = mdof.arch_assembly(catenary(1.0, 0.3, 0.025), 20)
@@ -205,6 +206,7 @@ def test_oas_converges_with_time_step():
     assert (o1 != o2).mean() < 0.01
 
 
+@pytest.mark.slow  # 10-25 s: a convergence study
 def test_oas_converges_with_number_of_voussoirs():
     # boundaries on the continuous four-hinge axes: N = 20 -> 40 moves the map less than
     # N = 10 -> 20, and by < 5 % of the cells

@@ -81,3 +81,32 @@ def test_missing_file_and_directory(tmp_path):
         read_record(tmp_path / "nope.AT2")
     with pytest.raises(ValueError, match="is a directory"):
         read_record(tmp_path)
+
+
+@pytest.mark.parametrize(
+    "text, msg",
+    [
+        ("0 1\n0.01 2\n0.02 3 4\n0.03 1\n", "line 3 has 3 column"),   # a third column
+        ("# c\n0 1\n0.01 2\n0.02 nan\n", "line 4 holds a value that is not a finite"),
+        ("0 1\n0.01 2\n0.03 3\n0.04 1\n", "non-uniform time step at line 3"),
+        ("0 1\n0.02 2\n0.01 3\n", "time must increase .line 3"),
+        ("time acc\n", "no samples"),
+        ("0 1\n", "at least 2 samples, found 1"),
+        ("0 1\n0.01 2\n0.02\n", "line 3 has 1 column"),
+    ],
+    ids=["third-column", "nan", "non-uniform", "backwards", "header-only", "one", "short"],
+)
+def test_two_column_errors_name_the_line(tmp_path, text, msg):
+    with pytest.raises(ValueError, match=msg):
+        read_two_column(_write(tmp_path, "r.txt", text))
+
+
+def test_binary_and_unknown_units(tmp_path):
+    f = tmp_path / "r.txt"
+    f.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR")
+    with pytest.raises(ValueError, match="binary file"):
+        read_record(f)
+    with pytest.raises(ValueError, match="binary file"):
+        read_record(f.rename(tmp_path / "r.AT2"))
+    with pytest.raises(ValueError, match="unknown acceleration unit 'furlong'"):
+        read_two_column(_write(tmp_path, "s.txt", "0 1\n0.01 2\n"), units="furlong")

@@ -10,7 +10,7 @@ from rockarch.cli import app
 from rockarch.constants import G
 
 
-@pytest.mark.slow
+@pytest.mark.slow  # ~60 s alone, 170 s on a loaded machine: every table and figure
 def test_reproduce_quick(tmp_path):
     out = tmp_path / "paper"
     res = CliRunner().invoke(app, ["reproduce", "--out", str(out), "--quick"])

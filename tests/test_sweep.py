@@ -185,6 +185,7 @@ def test_silent_scheduler_fails_fast(monkeypatch):
         assert time.monotonic() - t0 < 8
 
 
+@pytest.mark.slow  # 20-60 s: starts a Dask cluster (--dask-workers covers Dask in make test)
 def test_dask_local_cluster_is_bit_identical(block, reference):
     """The test's own LocalCluster (2 single-threaded worker processes on loopback), reached
     by its address like any running cluster; the El Centro record too."""

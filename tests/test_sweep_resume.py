@@ -42,9 +42,11 @@ def _chunks(root):
     return sorted((root / "chunks").rglob("*.npz"))
 
 
-@pytest.mark.parametrize("sig, mode", [(signal.SIGKILL, "serial"),
-                                       (signal.SIGINT, "processes"),
-                                       (signal.SIGKILL, "processes")])
+@pytest.mark.parametrize("sig, mode", [
+    pytest.param(signal.SIGKILL, "serial", marks=pytest.mark.slow),  # 30-100 s
+    (signal.SIGINT, "processes"),
+    pytest.param(signal.SIGKILL, "processes", marks=pytest.mark.slow),  # 30 s
+])
 def test_interrupted_sweep_resumes(tmp_path, sig, mode):
     script = tmp_path / "sweep_job.py"
     script.write_text(SCRIPT)

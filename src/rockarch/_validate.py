@@ -18,6 +18,16 @@ def positive(name: str, value: float) -> float:
     return v
 
 
+#: Largest frequency parameter p [1/s] accepted: a rigid block of half-diagonal
+#: R = 3g/(4p²) ≈ 74 nm; larger values only overflow (p² and the step count p·t/h).
+P_MAX = 1e4
+
+
+def frequency(name: str, value: float) -> float:
+    """Return a frequency parameter p as float if 0 < p ≤ :data:`P_MAX`, else ValueError."""
+    return in_range(name, value, 0.0, P_MAX, lo_open=True)
+
+
 def in_range(name: str, value: float, lo: float, hi: float, *, lo_open: bool = False,
              hi_open: bool = False) -> float:
     """Return ``value`` as float if it lies in the interval [lo, hi] (open ends on request)."""

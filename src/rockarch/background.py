@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from rockarch import motion, site, spectra, systems
+from rockarch.output.figures import save_figure, subplots
 from rockarch.records import el_centro
 
 #: Slendernesses of Fig. 3a (the slender one is the site OAS's block).
@@ -71,10 +72,7 @@ def _below(a: np.ndarray, b: np.ndarray) -> float:
 
 
 def _figure(ncols: int, nrows: int = 1, width: float = 6.0, height: float = 4.4):
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(width * ncols, height * nrows))
-    return fig, fig.subplots(nrows, ncols, squeeze=False)
+    return subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False)
 
 
 def _boundary_axes(ax, title: str, xlabel: str) -> None:
@@ -87,8 +85,6 @@ def _boundary_axes(ax, title: str, xlabel: str) -> None:
 
 
 def _save(fig, path) -> None:
-    from rockarch.plot import save_figure
-
     fig.tight_layout()
     save_figure(fig, path)
 

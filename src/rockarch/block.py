@@ -14,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch import limits
 from rockarch import rocking_kernels as _k
-from rockarch._validate import in_range, positive
+from rockarch._validate import frequency, in_range, positive
 from rockarch.constants import EPS_REST, T_FREE, G
 from rockarch.constants import SDOF_H_FACTOR as H_FACTOR
 from rockarch.motion import GroundMotion
@@ -51,7 +52,7 @@ class RigidBlock:
     restitution: float | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "p", positive("p", self.p))
+        object.__setattr__(self, "p", frequency("p", self.p))
         object.__setattr__(self, "alpha", in_range("alpha", self.alpha, 0.0, math.pi / 2,
                                                    lo_open=True, hi_open=True))
         object.__setattr__(self, "g", positive("g", self.g))
@@ -110,14 +111,17 @@ class RigidBlock:
 class BlockResponse(Response):
     """Time history of one block simulation (a :class:`~rockarch.response.Response`).
 
-    ``t``, ``theta``, ``theta_dot`` are sampled at every integration step and event;
-    ``impact_times`` holds the impact times; ``max_rotation_ratio`` is max |theta|/alpha.
+    ``t``, ``theta``, ``theta_dot`` are sampled at every integration step and event
+    (every ``stride``-th of them when the history would exceed
+    :func:`rockarch.limits.max_samples`); ``impact_times`` holds the impact times (the
+    first max_samples of them); ``max_rotation_ratio`` is max |theta|/alpha.
     """
 
     block: RigidBlock
     theta: np.ndarray
     theta_dot: np.ndarray
     impact_times: np.ndarray
+    stride: int = 1
 
 
 def _check_settings(t_free: float, h_factor: float, eps_rest: float) -> None:
@@ -147,16 +151,25 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
         tk = np.ascontiguousarray(motion.t, dtype=float)
         ak = np.ascontiguousarray(motion.a, dtype=float) / block.g
         name, duration = motion.name, motion.duration
-    cap = int((duration + t_free) * block.p / h_factor * 1.1) + 1024
+    cap = history_capacity(tk.size, duration + t_free, block.p, h_factor)
     model, prm, tab, amin, level, e = block.kernel_args()
-    status, t_ov, mx, t_end, t, th, om, imp = _k.run_recorded(
+    status, t_ov, mx, t_end, t, th, om, imp, stride = _k.run_recorded(
         tk, ak, 1.0, model, block.p**2, block.p, prm, tab, amin, level, e, t_free, h_factor,
         eps_rest, th0, om0, cap)
     return BlockResponse(
         system=f"block p={block.p:g} alpha={block.alpha:g}", block=block, motion_name=name,
         t=t, theta=th, theta_dot=om, impact_times=imp, impacts=int(imp.size),
         overturned=bool(status == 1), t_overturn=float(t_ov) if status == 1 else None,
-        max_rotation_ratio=float(mx), t_end=float(t_end))
+        max_rotation_ratio=float(mx), t_end=float(t_end), stride=stride)
+
+
+def history_capacity(n_knots: int, duration: float, p: float, h_factor: float) -> int:
+    """Samples a recorded SDOF history is expected to need (one per RK4 step of at most
+    h_factor/p and per knot, +10 % and 1024 for events), capped at
+    :func:`rockarch.limits.max_samples` before anything is allocated (docs/theory.md
+    Eq. (8.1)); a longer history is decimated, the verdict is unchanged."""
+    need = n_knots + duration * p / h_factor * 1.1 + 1024
+    return int(min(need, limits.max_samples()))
 
 
 def simulate_batch(block: RigidBlock, motion: GroundMotion, p, ratio, *,

@@ -32,8 +32,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rockarch import rocking_kernels as _k
-from rockarch._validate import in_range, positive
-from rockarch.block import housner_restitution
+from rockarch._validate import frequency, in_range, positive
+from rockarch.block import history_capacity, housner_restitution
 from rockarch.constants import EPS_REST, T_FREE, G
 from rockarch.constants import SDOF_H_FACTOR as H_FACTOR
 from rockarch.motion import GroundMotion
@@ -150,7 +150,7 @@ class SDOFMechanism:
 
     def size_for(self, p: float) -> float:
         """Size of the same shape whose frequency parameter is p (p ∝ 1/sqrt(size))."""
-        return self.size * (self.p / positive("p", p)) ** 2
+        return self.size * (self.p / frequency("p", p)) ** 2
 
     def with_restitution(self, restitution: float | None) -> SDOFMechanism:
         return SDOFMechanism(self.name, self.plus, self.minus, self.g, self.size, restitution,
@@ -186,7 +186,7 @@ def from_block(p: float, alpha: float, g: float = G, restitution: float | None =
     Q = R·cos(alpha − q), delta = alpha, e = 1 − 1.5 sin²alpha. Reproduces
     :func:`rockarch.block.simulate` to the table accuracy.
     """
-    p, g = positive("p", p), positive("g", g)
+    p, g = frequency("p", p), positive("g", g)
     alpha = in_range("alpha", alpha, 0.0, math.pi / 2, lo_open=True, hi_open=True)
     r_half = 3.0 * g / (4.0 * p * p)
     side = tabulate(alpha, lambda q: np.full_like(q, 4.0 / 3.0 * r_half**2),
@@ -204,7 +204,7 @@ def generic(p: float, delta: float, ap_min: float, g: float = G,
     and small q, phi = q/delta obeys phi'' = p²·(phi − 1 + s·a_g/ap,min) on each side. The
     impact coefficient defaults to Housner's value for a block with alpha = delta.
     """
-    p, g = positive("p", p), positive("g", g)
+    p, g = frequency("p", p), positive("g", g)
     delta = in_range("delta", delta, 0.0, math.pi / 2, lo_open=True, hi_open=True)
     ap_min = positive("ap_min", ap_min)
     # per unit inertia: A = 1, V' = p²(delta − q), Q = p²·delta/ap_min
@@ -251,7 +251,8 @@ class MechanismResponse(Response):
 
     ``u`` is signed: u > 0 on side + (opening for a_g > 0), u < 0 on side −; ``u_dot`` its
     rate; ``max_rotation_ratio`` is max |u|/delta of the active side; ``p`` the frequency
-    parameter of the simulated size.
+    parameter of the simulated size; ``stride`` > 1: every stride-th sample is kept (a
+    history longer than :func:`rockarch.limits.max_samples`; the verdict is exact).
     """
 
     mechanism: SDOFMechanism
@@ -259,6 +260,7 @@ class MechanismResponse(Response):
     u: np.ndarray
     u_dot: np.ndarray
     impact_times: np.ndarray
+    stride: int = 1
 
 
 def _settings(t_free, h_factor, eps_rest):
@@ -273,7 +275,7 @@ def simulate(mech: SDOFMechanism, motion: GroundMotion | None, *, p: float | Non
     """Simulate the mechanism (at the size whose frequency parameter is ``p``; default: the
     reference size) on the ground motion [m/s²] (physics note section 3)."""
     _settings(t_free, h_factor, eps_rest)
-    p = mech.p if p is None else positive("p", p)
+    p = mech.p if p is None else frequency("p", p)
     model, prm, tab, amin, level, e = mech.kernel_args()
     lim = mech.plus.delta if u0 >= 0 else mech.minus.delta
     u0 = in_range("u0", u0, -lim, lim, lo_open=True, hi_open=True)
@@ -284,15 +286,15 @@ def simulate(mech: SDOFMechanism, motion: GroundMotion | None, *, p: float | Non
         ak = np.ascontiguousarray(motion.a, dtype=float) / mech.g
         name, duration = motion.name, motion.duration
     c = (p / mech.p) ** 2 * mech.g
-    cap = int((duration + t_free) * p / h_factor * 1.1) + 1024
-    status, t_c, mx, t_end, t, u, ud, imp = _k.run_recorded(
+    cap = history_capacity(tk.size, duration + t_free, p, h_factor)
+    status, t_c, mx, t_end, t, u, ud, imp, stride = _k.run_recorded(
         tk, ak, 1.0, model, c, p, prm, tab, amin, level, e, t_free, h_factor, eps_rest, u0,
         float(u_dot0), cap)
     return MechanismResponse(
         system=mech.name, mechanism=mech, p=p, motion_name=name, t=t, u=u, u_dot=ud,
         impact_times=imp, impacts=int(imp.size), overturned=bool(status == 1),
         t_overturn=float(t_c) if status == 1 else None, max_rotation_ratio=float(mx),
-        t_end=float(t_end))
+        t_end=float(t_end), stride=stride)
 
 
 def simulate_batch(mech: SDOFMechanism, motion: GroundMotion, p, ratio, *,

@@ -2,7 +2,7 @@
 
 A :class:`GroundMotion` is a piecewise-linear function given by knots ``(t, a)``: the base
 acceleration is linear between knots and zero before the first and after the last knot
-(physics note section 8, paper Fig. 14). Records have uniformly spaced knots (one per
+(docs/theory.md Sect. 8, paper Fig. 14). Records have uniformly spaced knots (one per
 sample); pulses may repeat a knot time to represent a jump exactly (the square and step
 signals), so no signal is smeared over a sampling interval.
 """
@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rockarch import limits
 from rockarch._validate import finite_array, positive
 
 #: Knots per period used to sample smooth pulses (sine, half-sine, harmonic, Ricker).
@@ -99,6 +100,11 @@ class GroundMotion:
 
 
 def _smooth(ap: float, period: float, duration: float, func, name: str, n=None) -> GroundMotion:
+    if n is None:
+        need = max(math.ceil(duration / period * KNOTS_PER_PERIOD), 2)
+        if need + 1 > limits.max_samples():  # checked before anything is allocated
+            raise limits.too_many(f"{name} ({KNOTS_PER_PERIOD} knots per period)", need + 1,
+                                  "samples", limits.max_samples(), "use fewer --cycles")
     n_knots = max(int(math.ceil(duration / period * KNOTS_PER_PERIOD)), 2) if n is None else n
     t = np.linspace(0.0, duration, n_knots + 1)
     return GroundMotion(t, ap * func(t), name, {"signal": name.split()[0], "period": period})

@@ -23,6 +23,7 @@ from rockarch.arch import (
 from rockarch.arch.replacement import replacement
 from rockarch.constants import G
 from rockarch.fourhinge_motion import fourhinge_mechanism
+from rockarch.output.figures import save_figure, subplots
 from rockarch.reference import SECT8, SECT9, TABLE1, TABLE2
 
 SIGNALS = ("sine", "square", "step")
@@ -94,15 +95,11 @@ def _boundary(system, signal: str, p, ratio) -> np.ndarray:
 def fig15(path, n_p: int = 40, rises=(0.2, 0.3, 0.4), thick=(0.0125, 0.025, 0.05)
           ) -> list[dict]:
     """Hypothesis 1 (Fig. 15): four-hinge OAS of catenary arches and the slender block."""
-    import matplotlib.pyplot as plt
-
-    from rockarch.plot import save_figure
-
     colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, 71)
     block = systems.BlockSystem(alpha=0.01)
-    fig, axes = plt.subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
+    fig, axes = subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
                              sharey=True, squeeze=False)
     rows = []
     for i, sig in enumerate(SIGNALS):
@@ -176,15 +173,12 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
     Every curve is on the axes of the continuous arch's optimal four-hinge mechanism (its p
     at the arch's size, ap / its ap,min). Writes hypothesis2.png and hypothesis3.png.
     """
-    import matplotlib.pyplot as plt
-
     from rockarch import mdof
-    from rockarch.plot import save_figure
 
     out = Path(out)
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, n_ratio)
-    figs = {h: plt.subplots(3, 3, figsize=(13, 11), sharex=True, sharey=True) for h in (2, 3)}
+    figs = {h: subplots(3, 3, figsize=(13, 11), sharex=True, sharey=True) for h in (2, 3)}
     rows = []
     for j, (rise, d) in enumerate(MDOF_GEOMETRIES):
         arch = catenary(1.0, rise, d)
@@ -239,10 +233,6 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> list[d
     Returns one row per signal and curve: the share of p at which the curve is at or below
     the reference (the MDOF arch, else the four-hinge mechanism) and the mean relative gap.
     """
-    import matplotlib.pyplot as plt
-
-    from rockarch.plot import save_figure
-
     arch = circular(SECT8["span"], SECT8["rise"], SECT8["span"] * SECT8["d_over_l"])
     rep = rep if rep is not None else replacement(arch)
     p = np.linspace(1.0, 10.0, n_p)
@@ -259,7 +249,7 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> list[d
     for r, style in ((rep.equivalent, "b--"), (rep.lower_bound, "b:")):
         curves.append((f"block of the {r.rule} replacement",
                         systems.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), sharey=True)
+    fig, axes = subplots(1, 3, figsize=(15, 4.4), sharey=True)
     rows = []
     for ax, sig in zip(axes, SIGNALS, strict=True):
         bounds = []
@@ -287,8 +277,8 @@ def sect9(out: Path, n_p: int = 100) -> dict:
     """Sect. 9 design example on a site OAS of the two bundled El Centro components."""
     from rockarch import site
     from rockarch.design import design_check
+    from rockarch.output.report import write_report
     from rockarch.records import bundled_record_path
-    from rockarch.report import write_report
 
     out = Path(out)
     motions, hashes = site.load_records([bundled_record_path(180), bundled_record_path(270)])

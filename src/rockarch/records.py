@@ -7,6 +7,7 @@ scales every record to a target PGA, this constant never changes an OAS.
 
 from __future__ import annotations
 
+import math
 import re
 from importlib import resources
 from pathlib import Path
@@ -14,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 #: Standard gravity [m/s²] used to convert records given in units of g.
+from rockarch import limits
 from rockarch.constants import G_STANDARD
 from rockarch.motion import GroundMotion
 
@@ -40,6 +42,10 @@ def _read_text(path: Path) -> str:
         raise ValueError(f"{path}: no such file")
     if path.is_dir():
         raise ValueError(f"{path}: is a directory, not a record file")
+    size = path.stat().st_size
+    if size > 64 * limits.max_samples():  # a text sample takes at most ~40 characters
+        raise limits.too_many(f"{path} ({size / 1e6:.0f} MB)", size / 40, "samples",
+                              limits.max_samples(), "shorten the record")
     try:
         return path.read_text(encoding="latin-1")
     except OSError as exc:
@@ -64,7 +70,10 @@ def read_at2(path: str | Path) -> GroundMotion:
     ``  4000    0.01000    NPTS, DT`` (older NGA). Values follow, several per line.
     """
     path = Path(path)
-    lines = _read_text(path).splitlines()
+    text = _read_text(path)
+    if "\x00" in text[:8192]:
+        raise ValueError(f"{path}: a binary file, not a PEER .AT2 text file")
+    lines = text.splitlines()
     if len(lines) < 4:
         raise ValueError(f"{path}: not a PEER .AT2 file (fewer than 4 header lines)")
     header = lines[:4]
@@ -74,7 +83,7 @@ def read_at2(path: str | Path) -> GroundMotion:
                          f"found {header[3].strip()!r})")
     npts = int(m.group(1))
     dt = float(m.group(2).replace("D", "E").replace("d", "e"))
-    if not dt > 0:
+    if not (dt > 0 and math.isfinite(dt)):
         raise ValueError(f"{path}: DT must be > 0, found {dt}")
     unit_line = header[2].upper()
     if "ACCELERATION" not in unit_line:
@@ -101,41 +110,58 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
     """Read a two-column text record: time [s] and acceleration (``units``: m/s2, g, cm/s2).
 
     Columns may be separated by spaces, tabs, commas or semicolons; lines starting with
-    ``comment`` are skipped. The time step must be uniform (relative tolerance ``rtol``, for
-    rounding in the file); resample a non-uniform record before using it.
+    ``comment`` are skipped, and so are text lines before the first sample (a header such
+    as ``time acc``). Every sample line holds exactly two numbers. The time step must be
+    uniform (relative tolerance ``rtol``, for rounding in the file); resample a non-uniform
+    record before using it. Every error names the file and the line.
     """
     path = Path(path)
     factor = _units_factor(units)
-    rows = []
-    for k, line in enumerate(_read_text(path).splitlines(), start=1):
+    text = _read_text(path)
+    if "\x00" in text[:8192]:
+        raise ValueError(f"{path}: a binary file, not a text record (time, acceleration)")
+    rows, lines = [], []
+    for k, line in enumerate(text.splitlines(), start=1):
         s = line.strip()
         if not s or s.startswith(comment):
             continue
         parts = re.split(r"[\s,;]+", s)
-        if len(parts) < 2:
-            raise ValueError(f"{path}: line {k} has {len(parts)} column(s), expected 2")
         try:
-            rows.append((float(parts[0]), float(parts[1])))
+            vals = [float(v) for v in parts]
         except ValueError:
             if not rows:  # a header line such as "time acc"
                 continue
-            raise ValueError(f"{path}: line {k} is not two numbers: {s!r}") from None
+            raise ValueError(f"{path}: line {k} is not two numbers: {s[:60]!r}") from None
+        if len(vals) != 2:
+            raise ValueError(f"{path}: line {k} has {len(vals)} column(s), expected 2 "
+                             "(time, acceleration)")
+        rows.append(vals)
+        lines.append(k)
+    if not rows:
+        raise ValueError(f"{path}: no samples: a record needs at least 2 samples "
+                         "(lines 'time acceleration')")
     if len(rows) < 2:
         raise ValueError(f"{path}: a record needs at least 2 samples, found {len(rows)}")
     data = np.array(rows)
+    bad = np.flatnonzero(~np.isfinite(data).all(axis=1))
+    if bad.size:
+        raise ValueError(f"{path}: line {lines[int(bad[0])]} holds a value that is not a "
+                         "finite number")
     t, acc = data[:, 0], data[:, 1]
     _check_samples(path, acc)
-    if not np.all(np.isfinite(t)):
-        raise ValueError(f"{path}: a time value is not a finite number")
     dts = np.diff(t)
+    back = np.flatnonzero(dts <= 0)
+    if back.size:
+        raise ValueError(f"{path}: time must increase (line {lines[int(back[0]) + 1]}: "
+                         f"t={t[back[0] + 1]:g} s after t={t[back[0]]:g} s)")
     dt = (t[-1] - t[0]) / (t.size - 1)
-    if dt <= 0:
-        raise ValueError(f"{path}: time must increase")
-    off = np.flatnonzero(np.abs(dts - dt) > rtol * dt)
+    typical = float(np.median(dts))
+    off = np.flatnonzero(np.abs(dts - typical) > rtol * typical)
     if off.size:
         k = int(off[0])
-        raise ValueError(f"{path}: non-uniform time step at line of t={t[k]:g} s "
-                         f"(dt={dts[k]:g} s vs mean {dt:g} s); resample to a uniform dt first")
+        raise ValueError(f"{path}: non-uniform time step at line {lines[k + 1]} "
+                         f"(dt={dts[k]:g} s, elsewhere {typical:g} s); resample to a uniform "
+                         "dt first")
     t_uniform = t[0] + np.arange(t.size) * dt
     meta = {"source": str(path), "dt": dt, "npts": int(t.size), "format": "two-column",
             "units_in_file": units}

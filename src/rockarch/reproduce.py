@@ -3,24 +3,18 @@
 
 from __future__ import annotations
 
-import datetime as _dt
 import html
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 from rockarch import __version__, background, paper, reference
+from rockarch.output.html import stamp, write_page
+from rockarch.output.html import table as _table
 
 
 def _dev(ours: float, ref: float) -> str:
     return f"{100 * (ours / ref - 1):+.1f} %"
-
-
-def _table(head: list[str], rows: list[list[str]]) -> str:
-    th = "".join(f"<th>{html.escape(h)}</th>" for h in head)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>"
-                   for r in rows)
-    return f"<table><tr>{th}</tr>{body}</table>"
 
 
 def _table1_html(rows: list[dict]) -> str:
@@ -189,18 +183,12 @@ def reproduce(out, *, quick: bool = False,
         + "<p><a href='design_report.html'>design report</a>; rerun: <code>"
         + html.escape(s9["command"]) + "</code></p>")
     secs = time.perf_counter() - t_start
-    index = f"""<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">
-<title>rockarch: the paper reproduced</title><style>
-body {{ font-family: sans-serif; max-width: 70em; margin: 2em auto; color: #222; }}
-table {{ border-collapse: collapse; margin: 0.6em 0; font-size: 0.9em; }}
-th, td {{ border: 1px solid #bbb; padding: 0.2em 0.5em; }}</style></head><body>
-<h1>The paper's tables and figures, recomputed</h1>
-<p>rockarch {__version__}, {_dt.datetime.now().strftime('%Y-%m-%d %H:%M')},
+    body = f"""<h1>The paper's tables and figures, recomputed</h1>
+<p>rockarch {__version__}, {stamp()},
 {'quick (coarse grids)' if quick else 'full'} run in {secs:.0f} s:
 <code>rockarch reproduce --out {html.escape(str(out))}{' --quick' if quick else ''}</code>.
 Deviations are discussed in docs/validation.md of the repository.</p>
-{''.join(parts)}
-</body></html>"""
-    (out / "index.html").write_text(index, encoding="utf-8")
+{''.join(parts)}"""
+    write_page(out / "index.html", "rockarch: the paper reproduced", body)
     log(f"wrote {out / 'index.html'} ({secs:.0f} s)")
     return out / "index.html"

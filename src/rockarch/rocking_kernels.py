@@ -31,7 +31,7 @@ theta' = 0); it starts again only when the uplift condition holds. The idealised
 would otherwise need infinitely many impacts in finite time (Zeno).
 
 Status codes of :func:`run`: 0 safe (ended at rest or after the free time), 1 collapsed
-(overturned), -1 output buffer full (the caller enlarges it and calls again).
+(overturned), -2 step limit reached (:func:`run_recorded` turns it into a ValueError).
 """
 
 from __future__ import annotations
@@ -41,9 +41,13 @@ import math
 import numba as nb
 import numpy as np
 
+from rockarch import limits
+
 MODEL_BLOCK = 0
 MODEL_TABLE = 1
 _NEWTON_ITERS = 60
+#: Step limit of the summary-only runs of :func:`run_batch` (none: an OAS is unchanged).
+_NO_LIMIT = np.iinfo(np.int64).max
 
 
 @nb.njit(cache=True)
@@ -126,21 +130,38 @@ def _locate(model, th, om, at, slope, hi, s, level, sgn, c, prm, tab):
 
 
 @nb.njit(cache=True, inline="always")
-def _push(record, out_t, out_th, out_om, n, t, th, om):
-    """Append (t, theta, theta') to the history; -1 if the buffer is full."""
+def _push(record, rs, out_t, out_th, out_om, t, th, om):
+    """Append (t, theta, theta') to the history. ``rs`` = [n, stride, count]: n samples
+    stored, every stride-th offered sample is kept. A full buffer is halved in place (every
+    other sample kept) and the stride doubled: the history stays within the buffer."""
     if not record:
-        return n
-    if n < 0 or n >= out_t.shape[0]:
-        return -1
+        return
+    c = rs[2]
+    rs[2] = c + 1
+    if c % rs[1] != 0:
+        return
+    n = rs[0]
+    cap = out_t.shape[0]
+    if n >= cap:
+        half = (n + 1) // 2
+        for i in range(half):
+            out_t[i] = out_t[2 * i]
+            out_th[i] = out_th[2 * i]
+            out_om[i] = out_om[2 * i]
+        rs[1] *= 2
+        n = half
+        if c % rs[1] != 0:
+            rs[0] = n
+            return
     out_t[n] = t
     out_th[n] = th
     out_om[n] = om
-    return n + 1
+    rs[0] = n + 1
 
 
 @nb.njit(cache=True)
 def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, eps_rest,
-        th0, om0, record, out_t, out_th, out_om, out_imp):
+        th0, om0, record, max_steps, out_t, out_th, out_om, out_imp):
     """Simulate one SDOF rocking system; see the module docstring.
 
     Parameters
@@ -155,16 +176,21 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
     t_free : free motion after the last knot [s].
     eps_rest : settling threshold (fraction of level), see the chatter criterion.
     th0, om0 : initial coordinate and rate (0, 0: at rest).
-    record : store the history in out_* (else they may have length 1).
+    record : store the history in out_* (else they may have length 1). A history longer
+        than out_t is decimated (see :func:`_push`); the first len(out_imp) impact times
+        are stored.
+    max_steps : stop with status -2 after this many RK4 steps.
 
     Returns
     -------
-    (status, n_rec, n_imp, t_collapse, max_ratio, t_end), max_ratio = max s·theta/level.
+    (status, n_rec, n_imp, t_collapse, max_ratio, t_end, stride), max_ratio = max
+    s·theta/level, stride: every stride-th history sample was kept.
     """
     hmax = h_factor / p
     n = tk.shape[0]
     cap_imp = out_imp.shape[0]
-    n_rec = 0
+    rs = np.array([0, 1, 0], dtype=np.int64)
+    steps = 0
     n_imp = 0
     th = th0
     om = om0
@@ -178,7 +204,7 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
     if s != 0.0:
         max_r = s * th0 / level[0 if s > 0.0 else 1]
     t = tk[0]
-    n_rec = _push(record, out_t, out_th, out_om, n_rec, t, th, om)
+    _push(record, rs, out_t, out_th, out_om, t, th, om)
     for seg in range(n):
         if seg < n - 1:
             t0 = tk[seg]
@@ -200,7 +226,7 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
             at = a0 + slope * (t - t0)
             if resting:
                 if free:
-                    return 0, n_rec, n_imp, np.nan, max_r, t
+                    return 0, rs[0], n_imp, np.nan, max_r, t, rs[1]
                 if -amin[1] <= at <= amin[0]:
                     # first time in (t, t1] at which a_g leaves [-amin-, amin+]
                     if slope > 0.0:
@@ -220,9 +246,10 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
                 resting = False
                 th = 0.0
                 om = 0.0
-                n_rec = _push(record, out_t, out_th, out_om, n_rec, t, 0.0, 0.0)
-                if n_rec < 0:
-                    return -1, 0, n_imp, np.nan, max_r, t
+                _push(record, rs, out_t, out_th, out_om, t, 0.0, 0.0)
+            steps += 1
+            if steps > max_steps:
+                return -2, rs[0], n_imp, np.nan, max_r, t, rs[1]
             side = 0 if s > 0.0 else 1
             lev = level[side]
             h = min(hmax, t1 - t)
@@ -263,24 +290,19 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
                 om = om1
                 if s * th / lev > max_r:
                     max_r = s * th / lev
-                n_rec = _push(record, out_t, out_th, out_om, n_rec, t, th, om)
-                if n_rec < 0:
-                    return -1, 0, n_imp, np.nan, max_r, t
+                _push(record, rs, out_t, out_th, out_om, t, th, om)
                 continue
             t = t + tau
             if ev_level > 0.0:
                 th = s * lev
                 om = om_e
                 max_r = 1.0
-                n_rec = _push(record, out_t, out_th, out_om, n_rec, t, th, om)
-                if n_rec < 0:
-                    return -1, 0, n_imp, np.nan, max_r, t
-                return 1, n_rec, n_imp, t, max_r, t
+                rs[2] = 0  # the collapse state is always kept
+                _push(record, rs, out_t, out_th, out_om, t, th, om)
+                return 1, rs[0], n_imp, t, max_r, t, rs[1]
             # impact at theta = 0: the side switches, theta' -> e·theta'
-            n_rec = _push(record, out_t, out_th, out_om, n_rec, t, 0.0, om_e)
-            if record:
-                if n_rec < 0 or n_imp >= cap_imp:
-                    return -1, 0, n_imp, np.nan, max_r, t
+            _push(record, rs, out_t, out_th, out_om, t, 0.0, om_e)
+            if record and n_imp < cap_imp:
                 out_imp[n_imp] = t
             n_imp += 1
             om = e[side] * om_e
@@ -295,27 +317,41 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
                     resting = True
                     om = 0.0
                     s = 0.0
-            n_rec = _push(record, out_t, out_th, out_om, n_rec, t, 0.0, om)
-            if n_rec < 0:
-                return -1, 0, n_imp, np.nan, max_r, t
-    return 0, n_rec, n_imp, np.nan, max_r, t
+            _push(record, rs, out_t, out_th, out_om, t, 0.0, om)
+    return 0, rs[0], n_imp, np.nan, max_r, t, rs[1]
 
 
 def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor,
                  eps_rest, th0, om0, capacity):
-    """:func:`run` with the history: buffers of ``capacity`` samples, enlarged and rerun
-    until the history fits. Returns (status, t_collapse, max_ratio, t_end, t, theta,
-    theta', impact_times)."""
-    cap = int(capacity)
+    """:func:`run` with the history in buffers of ``capacity`` samples (at most
+    :func:`rockarch.limits.max_samples`), enlarged and rerun while the history was
+    decimated below that limit; at the limit the history is decimated (the verdict is the
+    same). Returns (status, t_collapse, max_ratio, t_end, t, theta, theta', impact_times,
+    stride); raises ValueError, before any work, if the run may need more than
+    :func:`rockarch.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.2))."""
+    limit = limits.max_samples()
+    # known before the work: at most one RK4 step per knot and per h_factor/p seconds
+    need = tk.shape[0] + (tk[-1] - tk[0] + t_free) * p / h_factor
+    if not need <= limits.max_steps():
+        raise limits.too_many(f"a simulation of {tk[-1] - tk[0] + t_free:.6g} s at p = "
+                              f"{p:.4g} 1/s", need, "steps", limits.max_steps(),
+                              "lower --t-free or the motion's duration")
+    max_steps = 2 * int(need) + 1000  # safety net: events split steps
+    cap = max(min(int(capacity), limit), 16)
     while True:
         out = [np.empty(cap) for _ in range(4)]
-        status, n_rec, n_imp, t_c, mx, t_end = run(
+        status, n_rec, n_imp, t_c, mx, t_end, stride = run(
             tk, ak, scale, model, c, p, prm, tab, amin, level, e, float(t_free),
-            float(h_factor), float(eps_rest), float(th0), float(om0), True, *out)
-        if status >= 0:
-            return (status, t_c, mx, t_end, out[0][:n_rec].copy(), out[1][:n_rec].copy(),
-                    out[2][:n_rec].copy(), out[3][:n_imp].copy())
-        cap *= 4
+            float(h_factor), float(eps_rest), float(th0), float(om0), True, max_steps, *out)
+        if status == -2:
+            raise ValueError(f"the simulation stopped at t = {t_end:.6g} s after "
+                             f"{max_steps:.3g} integration steps (twice the estimate)")
+        if stride == 1 or cap >= limit:
+            # a mostly full buffer is returned as is (no second copy at the memory peak)
+            hist = [b[:n] if 2 * n >= cap else b[:n].copy()
+                    for b, n in zip(out, (n_rec, n_rec, n_rec, min(n_imp, cap)), strict=True)]
+            return (status, t_c, mx, t_end, *hist, int(stride))
+        cap = min(cap * 4, limit)
 
 
 @nb.njit(cache=True, parallel=True)
@@ -332,9 +368,9 @@ def run_batch(tk, ak, scales, model, cs, ps, prm, tab, amin, level, e, t_free, h
     nimp = np.zeros(m, dtype=np.int64)
     dummy = np.zeros(1)
     for i in nb.prange(m):
-        st, _, ni, tov, mxa, _ = run(tk, ak, scales[i], model, cs[i], ps[i], prm, tab, amin,
-                                     level, e, t_free, h_factor, eps_rest, 0.0, 0.0, False,
-                                     dummy, dummy, dummy, dummy)
+        st, _, ni, tov, mxa, _, _ = run(tk, ak, scales[i], model, cs[i], ps[i], prm, tab,
+                                        amin, level, e, t_free, h_factor, eps_rest, 0.0, 0.0,
+                                        False, _NO_LIMIT, dummy, dummy, dummy, dummy)
         status[i] = st
         t_ov[i] = tov
         mx[i] = mxa

@@ -11,7 +11,8 @@ from rockarch.arch.fourhinge import analyse
 from rockarch.arch.geometry import MASS_MODELS, make_arch
 from rockarch.arch.thrust import minimum_thickness
 from rockarch.cli._app import app
-from rockarch.cli._common import G_OPT, JSON_OPT, Shape, check_outputs, guarded, print_json
+from rockarch.cli._common import G_OPT, JSON_OPT, Shape, guarded, print_json
+from rockarch.output import check_outputs
 from rockarch.systems import check_blocks
 
 
@@ -64,12 +65,12 @@ def arch(
         return
     if thickness is None:
         raise ValueError("--thickness is required (unless --min-thickness)")
-    check_outputs(plot)
+    check_outputs((plot, "--plot", "png"))
     a = make_arch(shape.value, span, rise, positive("--thickness", thickness),
                   mass_model=mass_model)
     res = analyse(a, blocks, g=g, direction=direction)
     if plot:
-        from rockarch.plot_arch import plot_mechanism
+        from rockarch.output.arch_plots import plot_mechanism
 
         plot_mechanism(res, plot)
     if json_out:

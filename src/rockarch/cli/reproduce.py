@@ -8,6 +8,7 @@ import typer
 
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, echo_err, guarded, print_json
+from rockarch.output import check_outputs
 
 
 @app.command("reproduce", short_help="The paper's tables and figures, paper vs computed.")
@@ -21,8 +22,7 @@ def reproduce_command(
     into OUT, with an index.html showing paper vs computed side by side."""
     from rockarch.reproduce import reproduce
 
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"{out}: exists and is not a folder")
+    check_outputs((out, "--out", "dir"))
     reproduce(out, quick=quick, log=echo_err)
     index = out / "index.html"
     if json_out:

@@ -43,3 +43,37 @@ def chain_model(assembly: Assembly) -> ChainModel:
     return ChainModel(_f(assembly.mass), _f(assembly.inertia), _f(assembly.centroid), rl, rr,
                       _f(assembly.normal), float(assembly.thickness.min()),
                       float(assembly.delta_ref), float(assembly.g))
+
+
+class GraphModel(NamedTuple):
+    """Any assembly for :mod:`rockarch.mdof.graph_stepper` (unit scale)."""
+
+    mass: np.ndarray  # (nb,)
+    inertia: np.ndarray  # (nb,)
+    c0: np.ndarray  # (nb, 2)
+    ba: np.ndarray  # (nj,) body on the tail side of the normal (-1: ground)
+    bb: np.ndarray  # (nj,) body the normal points into (-1: ground)
+    ra: np.ndarray  # (nj, 2, 2) corners relative to body a (absolute for the ground)
+    rb: np.ndarray  # (nj, 2, 2) corners relative to body b (absolute for the ground)
+    n0: np.ndarray  # (nj, 2) reference normals (turn with body a)
+    mu: np.ndarray  # (nj,) friction coefficients (inf: no sliding)
+    thick_min: float
+    delta_ref: float
+    g: float
+
+
+def graph_model(assembly: Assembly) -> GraphModel:
+    """The general stepper's input: the contact graph (body_a, body_b) and mu per joint."""
+    ba = np.ascontiguousarray(assembly.body_a, dtype=np.int64)
+    bb = np.ascontiguousarray(assembly.body_b, dtype=np.int64)
+    cen = np.asarray(assembly.centroid, dtype=float)
+    corners = np.asarray(assembly.corners, dtype=float)
+
+    def rel(bodies):
+        return np.ascontiguousarray(corners - np.where(bodies[:, None, None] >= 0,
+                                                       cen[bodies][:, None, :], 0.0))
+
+    return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb, rel(ba),
+                      rel(bb), _f(assembly.normal), _f(assembly.mu),
+                      float(assembly.thickness.min()), float(assembly.delta_ref),
+                      float(assembly.g))

@@ -1,4 +1,11 @@
-"""Simulation of MDOF assemblies (Moreau–Jean, see :mod:`rockarch.mdof.chain_stepper`)."""
+"""Simulation of MDOF assemblies (Moreau–Jean; docs/theory.md §6, §9).
+
+Two steppers behind one API: a chain without friction (arch, column, block: joint k between
+body k−1 and body k, every μ infinite) runs on :mod:`rockarch.mdof.chain_stepper` (exact
+banded active-set contact solve, O(N)); any other assembly (a general contact graph or any
+finite friction coefficient) on :mod:`rockarch.mdof.graph_stepper` (non-smooth
+Gauss–Seidel with the joints' Coulomb cones).
+"""
 
 from __future__ import annotations
 
@@ -7,12 +14,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch import limits
 from rockarch._validate import in_range
 from rockarch.constants import GAP_TOL, T_FREE
 from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
 from rockarch.mdof import chain_stepper as _k
+from rockarch.mdof import graph_stepper as _g
 from rockarch.mdof.assembly import Assembly
-from rockarch.mdof.kernel_data import chain_model
+from rockarch.mdof.kernel_data import chain_model, graph_model
 from rockarch.motion import GroundMotion
 from rockarch.response import Batch, Response, run_batch
 
@@ -31,6 +40,8 @@ class MDOFResponse(Response):
     frame), ``joints`` (nt, nj) joint state: 0 closed, 1 rotating about corner 0 (corner 1
     open), 2 about corner 1 (corner 0 open), 3 both corners open; ``energy`` (nt,) kinetic +
     potential energy relative to the start (ground frame, per unit depth and density).
+    ``max_slip`` is the largest tangential offset of the two sides of any joint [m] (0 for
+    the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding at once.
     """
 
     assembly: Assembly
@@ -43,10 +54,15 @@ class MDOFResponse(Response):
     h: float
     lcp_failures: int
     ground: GroundMotion | None = None
+    max_slip: float = 0.0
+    sliding_contacts_max: int = 0
 
     def to_dict(self) -> dict:
-        """The verdict plus ``open_joints_max`` (the CLI's ``--json`` output)."""
-        return {**super().to_dict(), "open_joints_max": int(self.open_joints_max)}
+        """The verdict plus ``open_joints_max``, ``max_slip`` (m) and
+        ``sliding_contacts_max`` (the CLI's ``--json`` output)."""
+        return {**super().to_dict(), "open_joints_max": int(self.open_joints_max),
+                "max_slip": float(self.max_slip),
+                "sliding_contacts_max": int(self.sliding_contacts_max)}
 
     def corners_at(self, i: int) -> np.ndarray:
         """Block outlines at record i: list of (K, 2) arrays in the ground frame."""
@@ -62,11 +78,33 @@ class MDOFResponse(Response):
         return out
 
 
+def uses_chain_stepper(assembly: Assembly) -> bool:
+    """True if the assembly runs on the banded chain stepper (a chain, no friction)."""
+    return assembly.is_chain and assembly.frictionless
+
+
 def _motion_arrays(motion: GroundMotion | None):
     if motion is None:
         return np.zeros(2), np.array([0.0, 1.0]), "free", 0.0
     return (np.ascontiguousarray(motion.t, dtype=float),
             np.ascontiguousarray(motion.a, dtype=float), motion.name, float(motion.duration))
+
+
+def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: int
+          ) -> tuple[int, int]:
+    """Time steps of a simulation and the recording stride, known before anything is
+    allocated: at most :func:`rockarch.limits.max_mdof_steps` steps (else ValueError), a
+    history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES` (every k-th step recorded
+    above it; the simulation itself is unchanged)."""
+    need = t_end / h
+    if not need <= limits.max_mdof_steps():
+        raise limits.too_many(f"an MDOF simulation of {t_end:.6g} s at h = {h:.3g} s", need,
+                              "mdof_steps", limits.max_mdof_steps(),
+                              "lower --t-free or the motion's duration")
+    n_steps = int(math.ceil(need))
+    per_sample = 8 * (2 + 3 * n_blocks) + n_joints
+    rec = max(int(record_every), 1, math.ceil(n_steps * per_sample / limits.MAX_HISTORY_BYTES))
+    return n_steps, rec
 
 
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
@@ -76,6 +114,8 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
     Free motion continues ``t_free`` s after the motion ends, or until rest or collapse.
+    ``record_every``: record every k-th step (raised when the history would exceed
+    :data:`rockarch.limits.MAX_HISTORY_BYTES`).
     """
     check_settings(t_free, h_factor, gap_tol)
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
@@ -85,17 +125,21 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     h = h_factor / p_act
     tk, ak, name, duration = _motion_arrays(motion)
     t_end = duration + t_free
-    n_steps = int(math.ceil(t_end / h))
-    rec = max(int(record_every), 1)
-    cap = n_steps // rec + 2
     nb_, nj = assembly.n_blocks, assembly.n_joints
+    n_steps, rec = _plan(t_end, h, nb_, nj, record_every)
+    cap = n_steps // rec + 2
     out_t, out_q = np.zeros(cap), np.zeros((cap, nb_, 3))
     out_s, out_e = np.zeros((cap, nj), dtype=np.int8), np.zeros(cap)
-    model = chain_model(assembly)
+    if uses_chain_stepper(assembly):
+        model = chain_model(assembly)
+        out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
+                     out_q, out_s, out_e) + (0.0, 0)
+    else:
+        model = graph_model(assembly)
+        out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
+                     out_q, out_s, out_e)
+    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide = out
     c0 = model.c0
-    st, tc, mx, imp, nopen, n_rec, steps, fails = _k.run(
-        model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t, out_q, out_s,
-        out_e)
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
     q0[0, :, :2] = c0 * scale
@@ -107,7 +151,8 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
         t_overturn=float(tc) if st == 1 else None, max_rotation_ratio=float(mx),
         t_end=float(out_t[n_rec - 1]) if n_rec else 0.0,
         impacts=int(imp), open_joints_max=int(nopen), steps=int(steps), h=h,
-        lcp_failures=int(fails), ground=motion)
+        lcp_failures=int(fails), ground=motion, max_slip=float(slip),
+        sliding_contacts_max=int(n_slide))
 
 
 def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
@@ -125,13 +170,18 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
     pr = assembly.p_ref if p_ref is None else float(p_ref)
     unit = motion.normalized()
     tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)
-    model = chain_model(assembly)
+    chain = uses_chain_stepper(assembly)
+    model = chain_model(assembly) if chain else graph_model(assembly)
 
     def run(pf, rf):
         scales = (pr / pf) ** 2
         hs = h_factor / (assembly.p_ref / np.sqrt(scales))
-        return _k.run_batch(
-            model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
-            float(unit.duration + t_free), float(unit.duration), gap_tol)
+        args = (model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
+                float(unit.duration + t_free), float(unit.duration), gap_tol)
+        if chain:
+            out = _k.run_batch(*args)
+            return out + (np.zeros(scales.size), np.zeros(scales.size, dtype=np.int64))
+        return _g.run_batch(*args)
 
-    return run_batch(p, ratio, run, extras=("open_joints_max", "lcp_failures"))
+    return run_batch(p, ratio, run, extras=("open_joints_max", "lcp_failures", "max_slip",
+                                            "sliding_contacts_max"))
