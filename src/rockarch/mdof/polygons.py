@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from rockarch.arch.geometry import _polygon_props
+from rockarch.arch.cutting import _polygon_props
 
 #: Relative tolerance (of the assembly's size) for coincident points, faces and overlaps.
 REL_TOL = 1e-7
