@@ -19,8 +19,8 @@ import numpy as np
 from rockarch import motion, paper, spectra, systems
 from rockarch.arch import analyse, circular
 from rockarch.block import RigidBlock, simulate
-from rockarch.plot import plot_oas, plot_response, save_figure
-from rockarch.plot_arch import plot_mechanism
+from rockarch.output.arch_plots import plot_mechanism
+from rockarch.output.figures import plot_oas, plot_response, save_figure, subplots
 from rockarch.records import el_centro
 
 ALPHA = 0.1  # slender block (B/H ≈ 0.1): the OAS of slender blocks hardly depend on alpha
@@ -58,9 +58,7 @@ def main() -> None:
                      f"| {p[i]:.2f} | > {ratio[-1]:g} |")
     lines.append("")
 
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
+    fig, axes = subplots(1, 3, figsize=(15, 4.4))
     lines += ["## OAS for the paper's pulses (Fig. 14), T = 1 s", "",
               "File: `oas_pulses.png`.", ""]
     for axi, sig in zip(axes, ("sine", "square", "step"), strict=True):
@@ -82,7 +80,7 @@ def main() -> None:
                  f"safe, max |theta|/alpha = {s['max_theta_over_alpha']:.3f}")
               + f", {s['impacts']} impacts. File: `block_elcentro.png`.", ""]
     # site OAS of the bundled records and the Sect. 9 design check
-    plot_mechanism(analyse(circular(10.0, 2.89, 0.35)), str(out / "arch_sect9.png"))
+    plot_mechanism(analyse(circular(10.0, 2.89, 0.35)), out / "arch_sect9.png")
     d = paper.sect9(out, n_p=args.n)
     lines += ["## Design check of the paper's Sect. 9 arch", "",
               "Circular arch l = 10 m, f = 2.89 m (f/l = 0.289), d = 0.35 m; site OAS of the two "

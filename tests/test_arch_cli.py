@@ -19,8 +19,11 @@ def test_json_contract_continuous():
     r = run(BASE + ["--thickness", "0.25", "--json"])
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
-    assert set(out) == {"ap_min", "lambda", "p", "delta", "Bv", "Bh", "A", "hinges", "c1",
-                        "c2", "c3", "c3p", "c4"}
+    assert set(out) == {"ap_min", "lambda", "p", "delta", "delta_part", "delta_u", "Bv", "Bh",
+                        "A", "hinges", "c1", "c2", "c3", "c3p", "c4", "c4_u"}
+    assert out["c4"] == pytest.approx(0.025 / out["delta"], rel=1e-12)  # d/l = 0.025
+    assert out["c4_u"] == pytest.approx(0.025 / out["delta_u"], rel=1e-12)
+    assert out["delta_part"] in (1, 3)
     assert out["ap_min"] == pytest.approx(9.81 * out["lambda"], rel=1e-12)
     assert out["ap_min"] == pytest.approx(9.81 * out["Bv"] / out["Bh"], rel=1e-8)
     assert len(out["hinges"]) == 4

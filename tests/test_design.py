@@ -14,8 +14,8 @@ from rockarch.arch import weighted_catenary as wcat
 from rockarch.arch.replacement import replacement
 from rockarch.cli import app
 from rockarch.design import design_check
+from rockarch.output.report import write_report
 from rockarch.records import bundled_record_path
-from rockarch.report import write_report
 
 runner = CliRunner()
 
@@ -91,7 +91,9 @@ def test_design_cli_contract_and_offline_report(site_file, tmp_path):
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     assert set(out) == {"replacement", "ratio", "pga_safe", "pga_safe_g"}
-    assert set(out["replacement"]) == {"thickness", "p", "ap_min"}
+    assert {"thickness", "span", "rise", "p", "ap_min", "rule", "thickness_over_span",
+            "thickness_over_original_span"} <= set(out["replacement"])
+    assert out["replacement"]["rule"] == "equivalent"
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
     assert out["pga_safe_g"] == pytest.approx(out["pga_safe"] / 9.81)
     html = rep.read_text()

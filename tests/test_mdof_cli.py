@@ -23,7 +23,7 @@ def test_simulate_mdof_contract():
             "open_joints_max"}
     safe = _json(["simulate", "mdof", *ARCH, "--blocks", "20", "--signal", "sine",
                   "--period", "1", "--ratio", "0.9", "--json"])
-    assert set(safe) == keys
+    assert keys <= set(safe) and "ap_min" in safe
     assert safe["overturned"] is False and safe["t_overturn"] is None
     assert safe["open_joints_max"] == 0 and safe["impacts"] == 0
     over = _json(["simulate", "mdof", *ARCH, "--blocks", "20", "--signal", "sine",

@@ -112,7 +112,7 @@ def test_cache_key_covers_every_input(block, shape):
 
 def test_cache_key_depends_on_version(block, shape, monkeypatch):
     key = sweep.chunk_key(block, shape, P, R)
-    monkeypatch.setattr(sweep, "__version__", "99.0")
+    monkeypatch.setattr(sweep.keys, "__version__", "99.0")
     assert sweep.chunk_key(block, shape, P, R) != key
 
 
@@ -172,7 +172,7 @@ def test_unwritable_store(tmp_path):
 
 def test_silent_scheduler_fails_fast(monkeypatch):
     """A port that accepts connections but never speaks Dask: a ValueError, no hang."""
-    monkeypatch.setattr(sweep, "CONNECT_TIMEOUT", 1.5)
+    monkeypatch.setattr(sweep.executors, "CONNECT_TIMEOUT", 1.5)
     with socket.socket() as srv:
         srv.bind(("127.0.0.1", 0))
         srv.listen(8)

@@ -24,18 +24,27 @@ from rockarch.motion import pulse as _pulse  # noqa: E402
 from rockarch.records import el_centro, read_record  # noqa: E402
 from rockarch.response import Batch, Response  # noqa: E402
 from rockarch.spectra import compute_oas as _compute_oas  # noqa: E402
+from rockarch.suite import Suite, read_suite  # noqa: E402
 from rockarch.systems import KINDS, batch, simulate, system  # noqa: E402
 
 
 def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int = 3) -> GroundMotion:
-    """A pulse of the paper's family (Fig. 14; docs/theory.md Eq. 10): one of :data:`SIGNALS`,
+    """A pulse of the paper's family (Fig. 14; docs/theory.md Eqs. 8.1–8.3): one of :data:`SIGNALS`,
     peak ``ap`` [m/s²] (1 by default: OAS and simulate scale it), period [s]."""
     return _pulse(signal, ap, period, cycles)
 
 
+def synthetic_suite(n: int, seed: int = 0, **kw) -> Suite:
+    """A :class:`Suite` of ``n`` seeded synthetic records (Rezaeian & Der Kiureghian model;
+    :func:`rockarch.synthetic.synthetic_suite`)."""
+    from rockarch.synthetic import synthetic_suite as _synthetic_suite
+
+    return _synthetic_suite(n, seed, **kw)
+
+
 def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
         progress: bool = False, executor=None, store=None):
-    """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eq. 5).
+    """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eqs. 2.1–2.2).
 
     The same computation as ``rockarch oas`` (which passes the same grids); see
     :func:`rockarch.spectra.compute_oas` for the executor and store options.
@@ -45,5 +54,6 @@ def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
                         store=store, **kw)
 
 
-__all__ = ["G", "KINDS", "SIGNALS", "Batch", "GroundMotion", "Response", "__version__", "batch",
-           "el_centro", "make_arch", "oas", "pulse", "read_record", "simulate", "system"]
+__all__ = ["G", "KINDS", "SIGNALS", "Batch", "GroundMotion", "Response", "Suite", "__version__",
+           "batch", "el_centro", "make_arch", "oas", "pulse", "read_record", "read_suite",
+           "simulate", "synthetic_suite", "system"]

@@ -1,7 +1,7 @@
 """The paper's tables and figures, computed (used by ``rockarch reproduce`` and examples/).
 
-Reference values are the paper's (../shared/docs/reference-values.md); every function
-returns plain rows (dicts) with the paper's value next to rockarch's, or draws a figure.
+Reference values are the paper's (:mod:`rockarch.reference`); every function returns plain
+rows (dicts) with the paper's value next to rockarch's, or draws a figure.
 """
 
 from __future__ import annotations
@@ -16,52 +16,36 @@ from rockarch.arch import (
     analyse,
     catenary,
     circular,
+    kinematics,
     mass_per_horizontal_length,
     weighted_catenary,
 )
 from rockarch.arch.replacement import replacement
 from rockarch.constants import G
 from rockarch.fourhinge_motion import fourhinge_mechanism
+from rockarch.output.figures import save_figure, subplots
+from rockarch.reference import SECT8, SECT9, TABLE1, TABLE2
 
 SIGNALS = ("sine", "square", "step")
 
-#: Table 1: (f/l, d/l) -> (c1, c2, c3, c3', c4) of the critical optimal four-hinge mechanism.
-TABLE1 = {
-    (0.2, 0.0125): (0.219, 0.823, 0.24, 0.28, 0.34),
-    (0.2, 0.025): (0.218, 0.829, 0.22, 0.30, 0.31),
-    (0.2, 0.05): (0.229, 0.853, 0.18, 0.34, 0.25),
-    (0.3, 0.0125): (0.270, 0.897, 0.26, 0.28, 0.40),
-    (0.3, 0.025): (0.267, 0.899, 0.24, 0.29, 0.36),
-    (0.3, 0.05): (0.263, 0.907, 0.22, 0.32, 0.34),
-    (0.3, 0.1): (0.292, 0.944, 0.17, 0.38, 0.27),
-    (0.4, 0.0125): (0.321, 0.983, 0.27, 0.29, 0.45),
-    (0.4, 0.025): (0.318, 0.984, 0.26, 0.30, 0.43),
-    (0.4, 0.05): (0.313, 0.988, 0.24, 0.31, 0.40),
-    (0.4, 0.1): (0.296, 1.006, 0.20, 0.36, 0.34),
-}
-#: Sect. 8 circular arch and Table 2 (l = 10 m).
-SECT8 = {"span": 10.0, "rise": 2.89, "d_over_l": 0.0346, "ap_min": 3.036, "c1": 0.242,
-         "c2": 0.768}
-TABLE2 = {
-    "equivalent": {"d/l": 0.0293, "c1": 0.2473, "c2": 0.8914, "ap_min": 3.036, "R/l": 0.0536,
-                   "p": 3.705, "rise": 2.924},
-    "lower-bound": {"d/l": 0.0207, "c1": 0.2437, "c2": 0.8896, "ap_min": 2.163,
-                    "R/l": 0.0528, "p": 11.82 / math.sqrt(10.0), "rise": 2.924},
-}
-#: Sect. 9 design example.
-SECT9 = {"thickness": 0.35, "ratio": 1.351, "pga_safe": 4.102, "pga_safe_g": 0.418}
-
-
 def table1_rows(g: float = G) -> list[dict]:
-    """Table 1: paper vs rockarch for every catenary arch (continuous mechanism, Eq. 14)."""
+    """Table 1: paper vs rockarch for every catenary arch (continuous mechanism, Eq. 14).
+
+    ``c4`` is in Table 1's convention (docs/theory.md Eq. 5.4), ``c4_u`` on the dynamics'
+    coordinate u (the other end part). ``c1c4_eq12`` is the delta-free product
+    c1·c4 = g·A·d/(Bv·f·l) of paper Eq. 12 (docs/theory.md Eq. 5.5) with A and Bv on the
+    coordinate of Table 1's delta; the paper's own c1·c4 can be set against it.
+    """
     rows = []
     for (fl, dl), (c1, c2, c3, c3p, c4) in TABLE1.items():
         r = analyse(catenary(1.0, fl, dl), g=g)
-        rm = analyse(catenary(1.0, fl, dl), g=g, direction=-1)
+        rate = abs(float(kinematics(r.mechanism, 0.0).dphi[r.end_part - 1, 0]))
         rows.append({"f/l": fl, "d/l": dl, "paper": {"c1": c1, "c2": c2, "c3": c3,
                                                        "c3p": c3p, "c4": c4},
                      "ours": {"c1": r.c1, "c2": r.c2, "c3": r.c3, "c3p": r.c3p, "c4": r.c4,
-                              "c4_mirrored": rm.c4}})
+                              "c4_u": r.c4_u, "c1c4": r.c1 * r.c4,
+                              "c1c4_eq12": g * r.A * dl / (r.Bv * fl * rate)},
+                     "paper_c1c4_ratio": c1 * c4 / (g * r.A * dl / (r.Bv * fl * rate))})
     return rows
 
 
@@ -71,18 +55,26 @@ def sect8_rows(g: float = G) -> list[dict]:
     for dl in (0.0346, 0.0345):
         r = analyse(circular(SECT8["span"], SECT8["rise"], SECT8["span"] * dl), g=g)
         rows.append({"d/l": dl, "ap_min": r.ap_min, "c1": r.c1, "c2": r.c2, "p": r.p,
-                     "delta": r.delta, "hinges_x": [h.x for h in r.hinges]})
+                     "delta": r.delta_end, "hinges_x": [h.x for h in r.hinges]})
     return rows
 
 
+def _replacement_row(r, span: float, g: float) -> dict:
+    return {"d/l": r.thickness / span, "d/l'": r.thickness / r.span, "span": r.span,
+            "rise": r.rise, "thickness": r.thickness, "c1": r.mechanism.c1,
+            "c2": r.mechanism.c2, "ap_min": r.ap_min, "R/l": r.R_block / span, "p": r.p}
+
+
 def table2_rows(g: float = G) -> dict:
-    """Table 2 with (a) rockarch's replacement construction and (b) the paper's geometry."""
-    arch = circular(SECT8["span"], SECT8["rise"], SECT8["span"] * SECT8["d_over_l"])
-    rep = replacement(arch, g=g)
+    """Table 2: (a) the lower-bound construction of docs/theory.md Eqs. 7.3–7.7 on the Sect. 8
+    arch (both mass options), (b) the paper's printed geometry (f = 2.924 m, l = 10 m)."""
     span = SECT8["span"]
-    fitted = {r.rule: {"d/l": r.thickness / span, "rise": r.rise, "c1": r.mechanism.c1,
-                       "c2": r.mechanism.c2, "ap_min": r.ap_min, "R/l": r.R_block / span,
-                       "p": r.p} for r in (rep.equivalent, rep.lower_bound)}
+    arch = circular(span, SECT8["rise"], span * SECT8["d_over_l"])
+    rep = replacement(arch, g=g)
+    rep_orig = replacement(arch, g=g, mass="original")
+    fitted = {r.rule: _replacement_row(r, span, g) for r in (rep.equivalent, rep.lower_bound)}
+    fitted_orig = {r.rule: _replacement_row(r, span, g)
+                   for r in (rep_orig.equivalent, rep_orig.lower_bound)}
     w = mass_per_horizontal_length(arch)
     given = {}
     for rule, ref in TABLE2.items():
@@ -91,7 +83,8 @@ def table2_rows(g: float = G) -> dict:
                        "ap_min": m.ap_min, "R/l": 0.75 * g / m.p**2 / span, "p": m.p}
     o = rep.original
     return {"original": {"ap_min": o.ap_min, "c1": o.c1, "c2": o.c2, "p": o.p},
-            "fitted": fitted, "paper_geometry": given, "replacement": rep}
+            "fitted": fitted, "fitted_original_mass": fitted_orig, "paper_geometry": given,
+            "replacement": rep}
 
 
 def _boundary(system, signal: str, p, ratio) -> np.ndarray:
@@ -102,15 +95,11 @@ def _boundary(system, signal: str, p, ratio) -> np.ndarray:
 def fig15(path, n_p: int = 40, rises=(0.2, 0.3, 0.4), thick=(0.0125, 0.025, 0.05)
           ) -> list[dict]:
     """Hypothesis 1 (Fig. 15): four-hinge OAS of catenary arches and the slender block."""
-    import matplotlib.pyplot as plt
-
-    from rockarch.plot import save_figure
-
     colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, 71)
     block = systems.BlockSystem(alpha=0.01)
-    fig, axes = plt.subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
+    fig, axes = subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
                              sharey=True, squeeze=False)
     rows = []
     for i, sig in enumerate(SIGNALS):
@@ -184,15 +173,12 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
     Every curve is on the axes of the continuous arch's optimal four-hinge mechanism (its p
     at the arch's size, ap / its ap,min). Writes hypothesis2.png and hypothesis3.png.
     """
-    import matplotlib.pyplot as plt
-
     from rockarch import mdof
-    from rockarch.plot import save_figure
 
     out = Path(out)
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, n_ratio)
-    figs = {h: plt.subplots(3, 3, figsize=(13, 11), sharex=True, sharey=True) for h in (2, 3)}
+    figs = {h: subplots(3, 3, figsize=(13, 11), sharex=True, sharey=True) for h in (2, 3)}
     rows = []
     for j, (rise, d) in enumerate(MDOF_GEOMETRIES):
         arch = catenary(1.0, rise, d)
@@ -239,14 +225,14 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
     return rows
 
 
-def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
+def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> list[dict]:
     """Fig. 19: OAS of the Sect. 8 arch (four-hinge mechanism and, unless ``mdof_blocks`` is
     None, the MDOF arch of that many voussoirs) and of the blocks of both replacement
-    catenaries (each block on its own p and ap,min)."""
-    import matplotlib.pyplot as plt
+    catenaries (each block on its own p and ap,min).
 
-    from rockarch.plot import save_figure
-
+    Returns one row per signal and curve: the share of p at which the curve is at or below
+    the reference (the MDOF arch, else the four-hinge mechanism) and the mean relative gap.
+    """
     arch = circular(SECT8["span"], SECT8["rise"], SECT8["span"] * SECT8["d_over_l"])
     rep = rep if rep is not None else replacement(arch)
     p = np.linspace(1.0, 10.0, n_p)
@@ -263,10 +249,18 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
     for r, style in ((rep.equivalent, "b--"), (rep.lower_bound, "b:")):
         curves.append((f"block of the {r.rule} replacement",
                         systems.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), sharey=True)
+    fig, axes = subplots(1, 3, figsize=(15, 4.4), sharey=True)
+    rows = []
     for ax, sig in zip(axes, SIGNALS, strict=True):
+        bounds = []
         for label, system, style in curves:
-            ax.plot(p, _boundary(system, sig, p, ratio), style, lw=1.5, label=label)
+            bounds.append(_boundary(system, sig, p, ratio))
+            ax.plot(p, bounds[-1], style, lw=1.5, label=label)
+        ref = bounds[1] if mdof_blocks is not None else bounds[0]
+        for (label, _, _), b in zip(curves, bounds, strict=True):
+            if b is not ref:
+                safe, rel = _compare(ref, b)
+                rows.append({"signal": sig, "curve": label, "safe": safe, "mean_rel": rel})
         ax.set_title(f"{sig}, T = 1 s", fontsize=9)
         ax.set_xlabel("p [1/s]")
         ax.grid(alpha=0.3)
@@ -276,14 +270,15 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> None:
                  "its replacement blocks", fontsize=10)
     fig.tight_layout()
     save_figure(fig, path)
+    return rows
 
 
 def sect9(out: Path, n_p: int = 100) -> dict:
     """Sect. 9 design example on a site OAS of the two bundled El Centro components."""
     from rockarch import site
     from rockarch.design import design_check
+    from rockarch.output.report import write_report
     from rockarch.records import bundled_record_path
-    from rockarch.report import write_report
 
     out = Path(out)
     motions, hashes = site.load_records([bundled_record_path(180), bundled_record_path(270)])

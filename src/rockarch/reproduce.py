@@ -3,24 +3,18 @@
 
 from __future__ import annotations
 
-import datetime as _dt
 import html
 import time
 from collections.abc import Callable
 from pathlib import Path
 
-from rockarch import __version__, paper
+from rockarch import __version__, background, paper, reference
+from rockarch.output.html import stamp, write_page
+from rockarch.output.html import table as _table
 
 
 def _dev(ours: float, ref: float) -> str:
     return f"{100 * (ours / ref - 1):+.1f} %"
-
-
-def _table(head: list[str], rows: list[list[str]]) -> str:
-    th = "".join(f"<th>{html.escape(h)}</th>" for h in head)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>"
-                   for r in rows)
-    return f"<table><tr>{th}</tr>{body}</table>"
 
 
 def _table1_html(rows: list[dict]) -> str:
@@ -31,41 +25,90 @@ def _table1_html(rows: list[dict]) -> str:
                    + [f"{pp[k]} / {oo[k]:.3f} ({_dev(oo[k], pp[k])})" for k in ("c1", "c2")]
                    + [f"{pp['c3']}/{pp['c3p']} / {oo['c3']:.3f}/{oo['c3p']:.3f}",
                       f"{pp['c4']} / {oo['c4']:.3f} ({_dev(oo['c4'], pp['c4'])})",
-                      f"{oo['c4_mirrored']:.3f} ({_dev(oo['c4_mirrored'], pp['c4'])})"])
-    return _table(["f/l", "d/l", "c1 paper / ours", "c2", "c3/c3'", "c4",
-                   "c4, delta on the other part"], out)
+                      f"{oo['c4_u']:.3f} ({_dev(oo['c4_u'], pp['c4'])})",
+                      f"{pp['c1'] * pp['c4']:.4f} / {oo['c1c4_eq12']:.4f} "
+                      f"({r['paper_c1c4_ratio']:.2f})"])
+    return _table(["f/l", "d/l", "c1 paper / ours", "c2", "c3/c3'",
+                   "c4 (delta of the end part at the extrados inner hinge)",
+                   "c4 on the coordinate u", "c1·c4 paper / Eq. 12 (ratio)"], out)
 
 
 def _table2_html(t2: dict) -> str:
-    rows = [["circular arch (d/l 0.0346)",
-             f"{paper.SECT8['c1']} / {t2['original']['c1']:.4f}",
-             f"{paper.SECT8['c2']} / {t2['original']['c2']:.4f}",
-             f"{paper.SECT8['ap_min']} / {t2['original']['ap_min']:.3f} "
-             f"({_dev(t2['original']['ap_min'], paper.SECT8['ap_min'])})", "–", "–",
-             f"– / {t2['original']['p']:.3f}"]]
-    for label, key in (("rockarch's construction", "fitted"),
-                       ("paper's geometry f = 2.924 m", "paper_geometry")):
-        for rule, ref in paper.TABLE2.items():
-            o = t2[key][rule]
-            rows.append([f"{rule}, {label}", f"{ref['c1']} / {o['c1']:.4f}",
-                         f"{ref['c2']} / {o['c2']:.4f}",
-                         f"{ref['ap_min']} / {o['ap_min']:.3f} "
-                         f"({_dev(o['ap_min'], ref['ap_min'])})",
-                         f"{ref['d/l']} / {o['d/l']:.4f}", f"{ref['R/l']} / {o['R/l']:.4f}",
-                         f"{ref['p']:.3f} / {o['p']:.3f} ({_dev(o['p'], ref['p'])})"])
-    return _table(["model", "c1 paper / ours", "c2", "ap,min [m/s²]", "d/l", "block R/l",
-                   "p [1/s]"], rows)
+    ref8 = reference.SECT8
+    o = t2["original"]
+    rows = [["circular arch (d/l 0.0346)", "–", "–", f"{ref8['c1']} / {o['c1']:.4f}",
+             f"{ref8['c2']} / {o['c2']:.4f}",
+             f"{ref8['ap_min']} / {o['ap_min']:.3f} ({_dev(o['ap_min'], ref8['ap_min'])})",
+             "–", f"– / {o['p']:.3f}"]]
+    for label, key in (("band construction, own mass", "fitted"),
+                       ("band construction, original's mass", "fitted_original_mass"),
+                       ("paper's geometry l = 10 m, f = 2.924 m", "paper_geometry")):
+        for rule, ref in reference.TABLE2.items():
+            r = t2[key][rule]
+            per_own = r.get("d/l'")
+            d_l = (f"{ref['d/l']} / {r['d/l']:.4f} (per l), {per_own:.4f} (per l')"
+                   if per_own is not None else f"{ref['d/l']} (given)")
+            geo = (f"{r['span']:.3f} / {ref['rise']} / {r['rise']:.3f}" if "span" in r
+                   else f"10 / {ref['rise']} / {r['rise']:.3f}")
+            rows.append([f"{rule}, {label}", d_l, geo, f"{ref['c1']} / {r['c1']:.4f}",
+                         f"{ref['c2']} / {r['c2']:.4f} ({_dev(r['c2'], ref['c2'])})",
+                         f"{ref['ap_min']} / {r['ap_min']:.3f} "
+                         f"({_dev(r['ap_min'], ref['ap_min'])})",
+                         f"{ref['R/l']} / {r['R/l']:.4f}",
+                         f"{ref['p']:.3f} / {r['p']:.3f} ({_dev(r['p'], ref['p'])})"])
+    return _table(["model", "d/l paper / ours", "l' [m] / f' paper / ours [m]",
+                   "c1 paper / ours", "c2", "ap,min [m/s²]", "block R/l", "p [1/s]"],
+                  rows)
+
+
+def _cells(ps: list[float]) -> str:
+    return ", ".join(f"{x:g}" for x in ps) if ps else "–"
+
+
+def _background(out: Path, quick: bool, parts: list[str], log) -> None:
+    """Figs. 2 and 3: the block and column claims the design method rests on."""
+    log("Fig. 2 …")
+    rows2 = background.fig2(out / "fig2.png", n_p=15 if quick else 60,
+                            n_ratio=29 if quick else 71)
+    parts.append("<h2>Fig. 2: OAS of a rigid block</h2><img src='fig2.png' width='100%'>"
+                 + _table(["signal", "alpha", "share of the map overturned",
+                           "p with a safe island above an overturning ratio"],
+                          [[r["signal"], r["alpha"], f"{100 * r['overturned_share']:.0f} %",
+                            f"{r['p_with_safe_islands']} of {r['n_p']}"] for r in rows2]))
+    log("Fig. 3a …")
+    rows3a = background.fig3a(out / "fig3a.png", n_p=10 if quick else 40,
+                              n_ratio=15 if quick else 57, tol=2e-2 if quick else 1e-3)
+    parts.append("<h2>Fig. 3a: the slender block is on the safe side</h2>"
+                 "<img src='fig3a.png' width='100%'>"
+                 + _table(["signal", "less slender block alpha",
+                           "p where the slender block's boundary is lower or equal",
+                           "p [1/s] where not"],
+                          [[r["signal"], r["alpha"], f"{100 * r['slender_safe']:.0f} %",
+                            _cells(r["p_not"])] for r in rows3a]))
+    log("Fig. 3b (MDOF columns) …")
+    rows3b = background.fig3b(out / "fig3b.png", n_p=5 if quick else 20,
+                              n_ratio=15 if quick else 57, tol=2e-2 if quick else 1e-3,
+                              blocks=(1, 3) if quick else background.FIG3B_BLOCKS)
+    parts.append("<h2>Fig. 3b: columns against the monolithic block</h2>"
+                 "<img src='fig3b.png' width='100%'>"
+                 + _table(["signal", "blocks", "p where the column is at least as safe",
+                           "p where it is weaker", "mean boundary column / monolith − 1",
+                           "p [1/s] where weaker"],
+                          [[r["signal"], r["blocks"], f"{100 * r['column_safer']:.0f} %",
+                            f"{100 * r['column_weaker']:.0f} %", f"{r['mean_rel']:+.3f}",
+                            _cells(r["p_weaker"])] for r in rows3b]))
 
 
 def reproduce(out, *, quick: bool = False,
               extra_sections: list[Callable[[Path, bool], str]] | None = None,
               log: Callable[[str], None] = print) -> Path:
-    """Write Table 1, Sect. 8, Table 2, Figs. 15, 16, 17 and 19, the Sect. 9 design example
-    (and ``extra_sections``) into ``out`` with an index.html."""
+    """Write Figs. 2–3, Table 1, Sect. 8, Table 2, Figs. 15, 16, 17 and 19, the Sect. 9 design
+    example (and ``extra_sections``) into ``out`` with an index.html."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     parts = []
+    _background(out, quick, parts, log)
     log("Table 1 …")
     parts.append("<h2>Table 1: catenary arches, constants of Eq. 14</h2>"
                  "<p>paper / rockarch (deviation); continuous (critical optimal) "
@@ -75,8 +118,10 @@ def reproduce(out, *, quick: bool = False,
     s8 = paper.sect8_rows()
     parts.append("<h2>Sect. 8: the circular arch</h2>" + _table(
         ["d/l", "ap,min paper / ours [m/s²]", "c1", "c2", "p [1/s]", "delta [rad]"],
-        [[r["d/l"], f"3.036 / {r['ap_min']:.3f} ({_dev(r['ap_min'], 3.036)})",
-          f"0.242 / {r['c1']:.3f}", f"0.768 / {r['c2']:.3f}", f"{r['p']:.3f}",
+        [[r["d/l"], f"{reference.SECT8['ap_min']} / {r['ap_min']:.3f} "
+          f"({_dev(r['ap_min'], reference.SECT8['ap_min'])})",
+          f"{reference.SECT8['c1']} / {r['c1']:.3f}",
+          f"{reference.SECT8['c2']} / {r['c2']:.3f}", f"{r['p']:.3f}",
           f"{r['delta']:.4f}"] for r in s8]))
     log("Table 2 …")
     t2 = paper.table2_rows()
@@ -113,9 +158,12 @@ def reproduce(out, *, quick: bool = False,
     for section in extra_sections or []:
         parts.append(section(out, quick))
     log("Fig. 19 …")
-    paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
+    rows19 = paper.fig19(out / "fig19.png", rep=t2["replacement"], n_p=13 if quick else 37,
                 mdof_blocks=blocks)
-    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>")
+    parts.append("<h2>Fig. 19</h2><img src='fig19.png' width='100%'>" + _table(
+        ["signal", "curve", "p where at or below the MDOF arch", "mean relative gap"],
+        [[r["signal"], r["curve"], f"{100 * r['safe']:.0f} %", f"{100 * r['mean_rel']:+.1f} %"]
+         for r in rows19]))
     log("Sect. 9 …")
     s9 = paper.sect9(out, n_p=40 if quick else 100)
     parts.append(
@@ -135,18 +183,12 @@ def reproduce(out, *, quick: bool = False,
         + "<p><a href='design_report.html'>design report</a>; rerun: <code>"
         + html.escape(s9["command"]) + "</code></p>")
     secs = time.perf_counter() - t_start
-    index = f"""<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">
-<title>rockarch: the paper reproduced</title><style>
-body {{ font-family: sans-serif; max-width: 70em; margin: 2em auto; color: #222; }}
-table {{ border-collapse: collapse; margin: 0.6em 0; font-size: 0.9em; }}
-th, td {{ border: 1px solid #bbb; padding: 0.2em 0.5em; }}</style></head><body>
-<h1>The paper's tables and figures, recomputed</h1>
-<p>rockarch {__version__}, {_dt.datetime.now().strftime('%Y-%m-%d %H:%M')},
+    body = f"""<h1>The paper's tables and figures, recomputed</h1>
+<p>rockarch {__version__}, {stamp()},
 {'quick (coarse grids)' if quick else 'full'} run in {secs:.0f} s:
 <code>rockarch reproduce --out {html.escape(str(out))}{' --quick' if quick else ''}</code>.
 Deviations are discussed in docs/validation.md of the repository.</p>
-{''.join(parts)}
-</body></html>"""
-    (out / "index.html").write_text(index, encoding="utf-8")
+{''.join(parts)}"""
+    write_page(out / "index.html", "rockarch: the paper reproduced", body)
     log(f"wrote {out / 'index.html'} ({secs:.0f} s)")
     return out / "index.html"

@@ -6,9 +6,9 @@ coordinate ``theta`` is signed: on side s = sign(theta) the system is the mechan
 opens for s·a_g > 0 (for the block: pivot on the left corner for s = +1), with
 q = s·theta ≥ 0 its opening coordinate. Two models give theta'':
 
-* ``MODEL_BLOCK`` — Housner's exact equation (physics note section 1)
+* ``MODEL_BLOCK`` — Housner's exact equation (docs/theory.md §1)
   theta'' = −p² [sin(s·alpha − theta) − (a_g/g) cos(s·alpha − theta)];
-* ``MODEL_TABLE`` — Lagrange's equation of any SDOF mechanism (physics note section 3),
+* ``MODEL_TABLE`` — Lagrange's equation of any SDOF mechanism (docs/theory.md §3),
   A(q) q'' + ½ A'(q) q'² = −V'(q) + s·a_g·Q(q), written as
   q'' = k²g [−Wv(q) + s (a_g/g) Wh(q)] − ½ D(q) q'² with Wv = V'/(gA), Wh = Q/A,
   D = A'/A tabulated (linear interpolation) for each side at a reference size, and

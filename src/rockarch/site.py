@@ -22,7 +22,6 @@ import xarray as xr
 from rockarch import __version__, spectra, systems
 from rockarch.constants import G_STANDARD, OAS_TOL
 from rockarch.motion import GroundMotion
-from rockarch.records import read_record
 
 KIND = "rockarch-site-oas"
 FORMAT_VERSION = 1
@@ -33,29 +32,22 @@ PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 
 def record_paths(paths) -> list[Path]:
-    """Expand files and folders (every ``*.AT2`` inside, sorted) into record files."""
-    out: list[Path] = []
-    for p in paths:
-        p = Path(p)
-        if p.is_dir():
-            found = sorted(q for q in p.iterdir() if q.suffix.lower() == ".at2")
-            if not found:
-                raise ValueError(f"{p}: folder holds no .AT2 record")
-            out.extend(found)
-        elif p.exists():
-            out.append(p)
-        else:
-            raise ValueError(f"{p}: no such file or folder")
-    if not out:
-        raise ValueError("give at least one record (file or folder of .AT2)")
-    return out
+    """Expand files and folders (``.AT2`` and two-column records inside, sorted) into record
+    files: :func:`rockarch.suite.record_files` (a ``_SearchResults.csv`` is skipped)."""
+    from rockarch.suite import record_files
+
+    return record_files(paths)[0]
 
 
 def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], list[str]]:
-    """Read the records and their file hashes; reject implausible PGAs (wrong units)."""
+    """Read the records as a suite (:func:`rockarch.suite.read_suite`: the same folders and
+    vertical components left out as every ``--records``) and their file hashes; reject
+    implausible PGAs (wrong units)."""
+    from rockarch.suite import read_suite
+
     motions, hashes = [], []
-    for path in record_paths(paths):
-        m = read_record(path, units=units)
+    for rec in read_suite(paths, units=units):
+        path, m = Path(rec.path), rec.motion
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
             raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
@@ -156,8 +148,13 @@ def curve_at(ds: xr.Dataset, p: float, curve: str = "envelope") -> tuple[float, 
     Returns (ratio, is_lower_bound): where no record overturns within the ratio range the
     largest ratio of the range is used, a safe lower bound of the true value.
     """
-    if curve not in ("envelope", "characteristic"):
-        raise ValueError(f"curve must be 'envelope' or 'characteristic', got {curve!r}")
+    from rockarch.charsite import CURVES
+
+    if curve not in CURVES:
+        raise ValueError(f"curve must be one of {', '.join(CURVES)}, got {curve!r}")
+    if curve not in ds:
+        raise ValueError(f"the site OAS has no {curve!r} curve: compute it from the records "
+                         "(rockarch design --records DIR)")
     ps = ds["p"].values
     if not ps[0] <= p <= ps[-1]:
         raise ValueError(f"the site OAS covers p = {ps[0]:g}…{ps[-1]:g} 1/s, the structure "

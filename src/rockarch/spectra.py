@@ -20,6 +20,7 @@ from tqdm.auto import tqdm
 from rockarch import __version__, sweep
 from rockarch.constants import OAS_TOL as TOL
 from rockarch.motion import GroundMotion
+from rockarch.output.paths import atomic_write
 
 
 class OASSystem(Protocol):
@@ -170,16 +171,7 @@ def boundary_of(ds: xr.Dataset) -> np.ndarray:
 
 def save(ds: xr.Dataset, path) -> None:
     """Write an OAS dataset to NetCDF atomically (a temporary file renamed on success)."""
-    from pathlib import Path
-
-    path = Path(path)
-    tmp = path.with_name(path.name + ".part")
-    try:
-        ds.to_netcdf(tmp)
-        tmp.replace(path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    atomic_write(path, ds.to_netcdf)
 
 
 def read_netcdf(path) -> xr.Dataset:

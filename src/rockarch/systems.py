@@ -8,7 +8,7 @@ frequency parameter ``p_ref``, and three calls that take the ground motion's *sh
   history, the motion scaled to PGA = ratio·ap_min, the structure scaled to frequency
   parameter p (p ∝ 1/sqrt(size) at fixed shape; None: its own size);
 - ``batch(motion, p, ratio)`` -> :class:`~rockarch.response.Batch`: many verdicts in
-  parallel (the OAS axes, docs/theory.md Eq. 4);
+  parallel (the OAS axes, docs/theory.md Eq. 2.1);
 - ``run(motion, p, ratio)`` -> (overturned, max_rotation_ratio): what a sweep stores.
 
 :func:`system` builds one from the keywords of ``rockarch oas`` / ``rockarch simulate``
@@ -20,6 +20,8 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
+
+import numpy as np
 
 from rockarch import mdof
 from rockarch import mechanism as mc
@@ -40,7 +42,8 @@ KINDS = {
     "fourhinge": "the four-hinge mechanism of an arch (exact linkage kinematics)",
     "frame": "rocking frame: two rigid columns and a rigid lintel",
     "sdof": "any SDOF rocking mechanism given by p, delta and ap,min",
-    "mdof": "multi-block arch or column whose joints open and close",
+    "mdof": "multi-block structure (arch, arch on piers or bridge, column, wall, colonnade, "
+            "assembly file) whose joints open, close and (with friction) slide",
 }
 
 #: Fewest voussoirs of a four-hinge mechanism.
@@ -48,7 +51,7 @@ MIN_FOURHINGE_BLOCKS = 4
 
 
 def scale_to_ratio(motion: GroundMotion, ratio: float, ap_min: float) -> GroundMotion:
-    """The motion scaled so that its peak |a_g| is ratio·ap_min (docs/theory.md Eq. 4)."""
+    """The motion scaled so that its peak |a_g| is ratio·ap_min (docs/theory.md Eq. 2.1)."""
     ratio = float(ratio)
     if not (ratio >= 0 and math.isfinite(ratio)):
         raise ValueError(f"ratio must be a finite number >= 0, got {ratio}")
@@ -217,6 +220,8 @@ class MDOFSystem:
              "ap_min_assembly": a.ap_min, "p_assembly": a.p_ref, "delta_ref": a.delta_ref,
              "size_ref": a.size, "g": a.g, "t_free": self.t_free, "h_factor": self.h_factor,
              "gap_tol": self.gap_tol}
+        if not a.frictionless:
+            d["friction_min"] = float(np.min(a.mu))
         d.update({k: v for k, v in a.info.items() if isinstance(v, (int, float, str))})
         return d
 
@@ -260,7 +265,13 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
            column: Sequence[Sequence[float]] | None = None, mass_ratio: float | None = None,
            delta: float | None = None, ap_min: float | None = None,
            restitution: float | None = None, g: float = G, t_free: float = T_FREE,
-           h_factor: float | None = None, gap_tol: float = GAP_TOL):
+           h_factor: float | None = None, gap_tol: float = GAP_TOL,
+           friction: float | None = None, spans: int | None = None,
+           pier_height: float | None = None, pier_width: float | None = None,
+           pier_blocks: int | None = None, abutments: bool | None = None,
+           wall: Sequence[int] | None = None, block: Sequence[float] | None = None,
+           colonnade: int | None = None, bay: float | None = None,
+           lintel: float | None = None, assembly=None):
     """Build the rocking system of one kind from the options of ``rockarch oas/simulate``.
 
     Parameters
@@ -281,6 +292,18 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
         not for mdof, whose impacts follow from the geometry).
     g, t_free, h_factor, gap_tol : gravity, free motion after the record, step × p (default
         per model, :mod:`rockarch.constants`), MDOF contact tolerance.
+    friction :
+        mdof: Coulomb friction coefficient of every joint (None: no sliding, the chain
+        model bit for bit); ``ap_min`` is then the friction-aware collapse acceleration
+        (docs/theory.md Eq. (10.4); one block: min(mu, B/H)·g).
+    spans, pier_height, pier_width, pier_blocks, abutments :
+        mdof: the arch on piers (spans 1) or a bridge of ``spans`` equal arches
+        (:func:`rockarch.mdof.builders.bridge`).
+    wall, block : mdof: a wall in running bond of (rows, columns) blocks (B, H) [m].
+    colonnade, block, bay, lintel : mdof: that many columns (B, H) [m], ``bay`` [m] apart,
+        under a lintel of depth ``lintel`` [m] (2 columns: a trilithon).
+    assembly : mdof: a JSON file (or its dict) of convex blocks
+        (:mod:`rockarch.mdof.assembly_file`).
 
     Returns
     -------
@@ -290,6 +313,14 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     if kind not in KINDS:
         raise ValueError(f"unknown system kind {kind!r}: choose one of {', '.join(KINDS)}")
     sdof_h = SDOF_H_FACTOR if h_factor is None else h_factor
+    mdof_only = {"friction": friction, "spans": spans, "pier_height": pier_height,
+                 "pier_width": pier_width, "pier_blocks": pier_blocks, "abutments": abutments,
+                 "wall": wall, "block": block, "colonnade": colonnade, "bay": bay,
+                 "lintel": lintel, "assembly": assembly}
+    extra = [k for k, v in mdof_only.items() if v is not None]
+    if kind != "mdof" and extra:
+        raise ValueError(f"--{extra[0].replace('_', '-')} belongs to --system mdof, not "
+                         f"{kind}")
     if kind == "block":
         if width is not None or height is not None:
             if p is not None or alpha is not None:
@@ -304,16 +335,19 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
         if restitution is not None:
             raise ValueError("an mdof system has no restitution: joints close with "
                              "inelastic impacts (the restitution follows from the geometry)")
-        if column is not None:
-            if shape is not None or blocks is not None:
-                raise ValueError("give either a column or an arch (shape ... blocks), "
-                                 "not both")
-            assembly = mdof.column(column, g=g)
-        else:
+        arch = None
+        if column is None and wall is None and colonnade is None and assembly is None:
             arch = _arch(shape, span, rise, thickness, rise_over_span, thickness_over_span,
                          kind)
             _need(kind, blocks=blocks)
-            assembly = mdof.arch_assembly(arch, blocks, g=g)
+        elif shape is not None or blocks is not None:
+            raise ValueError("give one structure: an arch (shape ... blocks), a column, a "
+                             "wall, a colonnade or an assembly file")
+        assembly = mdof_assembly(
+            arch=arch, blocks=blocks, column=column, friction=friction, spans=spans,
+            pier_height=pier_height, pier_width=pier_width, pier_blocks=pier_blocks,
+            abutments=abutments, wall=wall, block=block, colonnade=colonnade, bay=bay,
+            lintel=lintel, assembly=assembly, g=g)
         return MDOFSystem(assembly, t_free=t_free,
                           h_factor=MDOF_H_FACTOR if h_factor is None else h_factor,
                           gap_tol=gap_tol)
@@ -334,10 +368,61 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     return MechanismSystem(mech, t_free=t_free, h_factor=sdof_h)
 
 
+def _pair(name: str, values, n: int = 2) -> tuple:
+    vals = tuple(values)
+    if len(vals) != n:
+        raise ValueError(f"{name} needs {n} values, got {len(vals)}")
+    return vals
+
+
+def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=None,
+                  pier_height=None, pier_width=None, pier_blocks=None, abutments=None,
+                  wall=None, block=None, colonnade=None, bay=None, lintel=None,
+                  assembly=None, g: float = G) -> Assembly:
+    """The MDOF assembly of :func:`system`'s keywords: exactly one of an arch (alone or on
+    piers), a column, a wall, a colonnade or an assembly file, with ``friction``."""
+    from rockarch.mdof import assembly_file, builders
+
+    given = [k for k, v in (("arch", arch), ("column", column), ("wall", wall),
+                            ("colonnade", colonnade), ("assembly", assembly)) if v is not None]
+    if len(given) != 1:
+        raise ValueError(f"give one mdof structure, got {', '.join(given) or 'none'}")
+    piers = {"spans": spans, "pier_height": pier_height, "pier_width": pier_width,
+             "pier_blocks": pier_blocks, "abutments": abutments}
+    if any(v is not None for v in piers.values()) and arch is None:
+        raise ValueError("--spans/--pier-height/--pier-width/--pier-blocks/--abutments "
+                         "build piers under an arch: give the arch too")
+    if block is not None and wall is None and colonnade is None:
+        raise ValueError("--block sizes the blocks of a wall or a colonnade")
+    if (bay is not None or lintel is not None) and colonnade is None:
+        raise ValueError("--bay and --lintel belong to a colonnade")
+    mu = None if friction is None else builders.friction_value(friction)
+    if assembly is not None:
+        if isinstance(assembly, dict):
+            return assembly_file.assembly_from_dict(assembly, mu=mu, g=g)
+        return assembly_file.read_assembly(assembly, mu=mu, g=g)
+    if wall is not None or colonnade is not None:
+        _need("mdof", block=block)
+        bw, bh = _pair("--block (B,H)", block)
+        if wall is not None:
+            rows, cols = _pair("--wall (ROWS,COLUMNS)", wall)
+            return builders.wall(rows, cols, bw, bh, mu=mu, g=g)
+        _need("mdof", bay=bay, lintel=lintel)
+        return builders.colonnade(colonnade, bw, bh, bay, lintel, mu=mu, g=g)
+    if arch is not None and any(v is not None for v in piers.values()):
+        _need("mdof", pier_height=pier_height, pier_width=pier_width)
+        return builders.bridge(arch, blocks, spans=1 if spans is None else spans,
+                               pier_height=pier_height, pier_width=pier_width,
+                               pier_blocks=pier_blocks, abutments=abutments, mu=mu, g=g)
+    a = mdof.column(column, g=g) if column is not None else mdof.arch_assembly(arch, blocks,
+                                                                               g=g)
+    return a if mu is None else builders.with_friction(a, mu)
+
+
 def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None
              ) -> Response:
     """One time history: ``sys_`` at frequency parameter p (None: its own size) on the
-    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 4)."""
+    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 2.1)."""
     return sys_.simulate(motion, ratio=ratio, p=p)
 
 

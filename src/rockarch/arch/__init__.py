@@ -1,4 +1,4 @@
-"""Masonry arch statics: geometry, thrust-line limit analysis, four-hinge mechanism (issue 3).
+"""Masonry arch statics: geometry, thrust-line limit analysis, four-hinge mechanism.
 
 Typical use::
 
@@ -7,6 +7,7 @@ Typical use::
     res.ap_min, res.p, res.delta, res.hinges
 """
 
+from rockarch.arch.cutting import Voussoirs, voussoirs
 from rockarch.arch.fourhinge import (
     ArchMechanism,
     FourHinge,
@@ -23,25 +24,20 @@ from rockarch.arch.fourhinge import (
     potential,
     potential_du,
 )
+from rockarch.arch.funicular import mass_per_horizontal_length, weighted_catenary
 from rockarch.arch.geometry import (
     CONTINUOUS_BLOCKS,
     SHAPES,
     Arch,
-    HorizontalWeights,
-    Voussoirs,
     catenary,
-    catenary_parameter,
     circular,
     elliptical,
     from_contour,
-    horizontal_weights,
     make_arch,
-    mass_per_horizontal_length,
     pointed,
     polyline,
-    voussoirs,
-    weighted_catenary,
 )
+from rockarch.arch.shapes import catenary_parameter
 from rockarch.arch.thrust import (
     Hinge,
     ThrustResult,
@@ -49,6 +45,7 @@ from rockarch.arch.thrust import (
     limit_analysis,
     minimum_thickness,
 )
+from rockarch.arch.weights import HorizontalWeights, horizontal_weights
 
 __all__ = [
     "CONTINUOUS_BLOCKS", "SHAPES", "Arch", "ArchMechanism", "FourHinge", "Hinge",

@@ -8,7 +8,7 @@ direction = +1, i.e. a ground acceleration to the right). Part 3 turns by v(u) a
 |H3(v) - H2(u)| = |H3 - H2| (closed form, branch through v(0) = 0); part 2 follows as the
 rigid motion carrying (H2, H3) to (H2(u), H3(v)).
 
-With these kinematics (physics note Sect. 3):
+With these kinematics (docs/theory.md §3):
 
     A(u) = sum_j m_j (x_j'^2 + y_j'^2) + I_j phi_j'^2        (' = d/du)
     V(u) = g sum_j m_j y_j(u)
@@ -29,7 +29,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from rockarch._validate import positive
-from rockarch.arch.geometry import Arch, Voussoirs
+from rockarch.arch.cutting import Voussoirs
+from rockarch.arch.geometry import Arch
 from rockarch.arch.thrust import Hinge, ThrustResult, limit_analysis
 from rockarch.constants import G
 
@@ -171,27 +172,31 @@ def kinematics(mech: FourHinge, u, *, second: bool = False) -> Kinematics:
 
 
 def generalized_inertia(mech: FourHinge, u) -> np.ndarray:
-    """A(u) = sum m (x'^2 + y'^2) + I phi'^2 (physics note Sect. 3; paper Eq. 12–13)."""
+    """A(u) = sum m (x'^2 + y'^2) + I phi'^2 (docs/theory.md Eq. 3.2; paper Eqs. 12–13)."""
     k = kinematics(mech, u)
     m, i = mech.mass[:, None], mech.inertia[:, None]
     return np.sum(m * (k.dx**2 + k.dy**2) + i * k.dphi**2, axis=0)
 
 
 def generalized_inertia_du(mech: FourHinge, u) -> np.ndarray:
-    """A'(u) = 2 sum m (x' x'' + y' y'') + 2 I phi' phi'' (physics note Sect. 3)."""
+    """A'(u) = 2 sum m (x' x'' + y' y'') + 2 I phi' phi''.
+
+    The u-derivative of docs/theory.md Eq. 3.2."""
     k = kinematics(mech, u, second=True)
     m, i = mech.mass[:, None], mech.inertia[:, None]
     return 2 * np.sum(m * (k.dx * k.d2x + k.dy * k.d2y) + i * k.dphi * k.d2phi, axis=0)
 
 
 def potential(mech: FourHinge, u) -> np.ndarray:
-    """V(u) = g sum m y(u), relative to u = 0 (physics note Sect. 3)."""
+    """V(u) = g sum m y(u), relative to u = 0 (docs/theory.md Eq. 3.2)."""
     k = kinematics(mech, u)
     return mech.g * np.sum(mech.mass[:, None] * (k.y - mech.centroid[:, 1:2]), axis=0)
 
 
 def potential_du(mech: FourHinge, u) -> np.ndarray:
-    """dV/du = g sum m y'(u): gravity's resisting generalised moment (physics note Sect. 3)."""
+    """dV/du = g sum m y'(u): gravity's resisting generalised moment.
+
+    B_v of docs/theory.md Eq. 3.3 at u = 0."""
     k = kinematics(mech, u)
     return mech.g * np.sum(mech.mass[:, None] * k.dy, axis=0)
 
@@ -295,9 +300,14 @@ class ArchMechanism:
     ap_min, lambda_ : from the LP.
     ap_min_vw : g*Bv/Bh from virtual work on the mechanism (must equal ap_min).
     Bv, Bh, A : generalised gravity moment, driving moment per unit acceleration, inertia.
-    delta : neutral position (exact kinematics); delta_linear: linearised.
-    p : sqrt(Bv/(A*delta)), 1/s.
-    c1..c4, c3p : constants of Eq. 14 / Table 1 (see :func:`analyse`).
+    delta : neutral value of the mechanism coordinate u (rotation of part 1 about H1, exact
+        kinematics) — the dynamics' delta; delta_linear: linearised.
+    delta_end, end_part : Table 1's delta: the rotation, at the neutral configuration, of the
+        end part next to the extrados inner hinge (``end_part`` 1 = H1–H2 or 3 = H3–H4),
+        docs/theory.md Eq. (5.4).
+    p : sqrt(Bv/(A*delta)), 1/s (on the coordinate u).
+    c1..c4, c3p : constants of Eq. 14 / Table 1 (see :func:`analyse`); c4 in Table 1's
+        convention (delta_end), c4_u = d/(delta*l) on the coordinate u.
     """
 
     thrust: ThrustResult
@@ -317,17 +327,26 @@ class ArchMechanism:
     c3: float
     c3p: float
     c4: float
+    delta_end: float = float("nan")
+    end_part: int = 0
+    c4_u: float = float("nan")
 
     @property
     def hinges(self) -> tuple[Hinge, ...]:
         return self.thrust.hinges
 
-    def as_dict(self) -> dict:
-        """The CLI's JSON contract (joint is None for the continuous mechanism)."""
+    def to_dict(self) -> dict:
+        """The CLI's JSON contract (joint is None for the continuous mechanism).
+
+        ``delta`` and ``c4`` are Table 1's (the end part next to the extrados inner hinge,
+        ``delta_part``); ``delta_u`` and ``c4_u`` are on the dynamics' coordinate u.
+        """
         return {"ap_min": self.ap_min, "lambda": self.lambda_, "p": self.p,
-                "delta": self.delta, "Bv": self.Bv, "Bh": self.Bh, "A": self.A,
-                "hinges": [h.as_dict(joint=not self.continuous) for h in self.hinges],
-                "c1": self.c1, "c2": self.c2, "c3": self.c3, "c3p": self.c3p, "c4": self.c4}
+                "delta": self.delta_end, "delta_part": self.end_part, "delta_u": self.delta,
+                "Bv": self.Bv, "Bh": self.Bh, "A": self.A,
+                "hinges": [h.to_dict(joint=not self.continuous) for h in self.hinges],
+                "c1": self.c1, "c2": self.c2, "c3": self.c3, "c3p": self.c3p, "c4": self.c4,
+                "c4_u": self.c4_u}
 
 
 def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: int = 1
@@ -346,8 +365,10 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
 
     Notes
     -----
-    Eq. 14: c1 = g/(p² f), c2 = ap_min f²/(g d l), c4 = d/(delta l), with l the span, f the
-    rise of the axis and d the thickness (the mean joint length if it varies). c3 and c3p are
+    Eq. 14 (docs/theory.md Eq. 5.2): c1 = g/(p² f), c2 = ap_min f²/(g d l), c4 = d/(delta l),
+    with l the span, f the rise of the axis and d the thickness (the mean joint length if it
+    varies). c4 uses Table 1's delta, the rotation of the end part next to the extrados inner
+    hinge at the neutral configuration (Eq. 5.4); c4_u uses the coordinate u's delta. c3 and c3p are
     the positions of the two inner hinges, each measured from its near springing (H2 from the
     left, H3 from the right) as a fraction of the span: c3 for the inner hinge on the
     **extrados**, c3p for the one on the intrados (this matches Table 1, where c3 < c3').
@@ -377,8 +398,11 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
         c3, c3p = pos2, pos3
     else:
         c3, c3p = pos3, pos2
+    end_part = 1 if h2.side == "extrados" else 3
+    delta_end = abs(float(kinematics(mech, delta).phi[end_part - 1, 0]))
     return ArchMechanism(
         thrust=res, mechanism=mech, continuous=blocks is None, ap_min=res.ap_min,
         lambda_=res.lambda_, ap_min_vw=g * bv / bh, Bv=bv, Bh=bh, A=a0, delta=delta,
         delta_linear=dlin, p=p, c1=g / (p * p * rise), c2=res.ap_min * rise**2 / (g * d * span),
-        c3=c3, c3p=c3p, c4=d / (delta * span))
+        c3=c3, c3p=c3p, c4=d / (delta_end * span), delta_end=delta_end, end_part=end_part,
+        c4_u=d / (delta * span))

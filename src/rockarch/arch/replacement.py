@@ -1,17 +1,19 @@
-"""Replacement catenary arch of an arbitrary arch (paper Sect. 4, 8; physics note section 7).
+"""Replacement catenary arch of an arbitrary arch (paper Sects. 4, 8; docs/theory.md §7).
 
-The replacement is a *weighted catenary*: its axis is the gravity thrust line of the original
-arch's own mass distribution (mass per unit horizontal length, carried on the axis), drawn
-between the original axis' springing points. Two uniform thicknesses are defined:
+The replacement's axis is the axis of the thickest uniform catenary band inside the
+original's contour, its springings free on the original's springing joints
+(:func:`rockarch.arch.band.lower_bound_band`, Eqs. 7.3–7.6). It has its own span l′ and
+rise f′. Two uniform thicknesses are defined on it:
 
-* **lower bound** d̄: the largest uniform thickness whose contour (axis ± d/2 along the
-  normal) fits inside the original arch's contour; the rise of the replacement axis is the
-  one that maximises it;
-* **equivalent** d̂: on the same axis, the thickness whose limit acceleration ap,min equals
-  the original arch's.
+* **lower bound** d̄: the band's thickness (Eq. 7.6);
+* **equivalent** d̂: the thickness whose limit acceleration ap,min equals the original arch's
+  (root finding on the LP, Eq. 7.7).
 
-For each, the critical optimal four-hinge mechanism gives p, ap,min, delta and the constants
-c1, c2 of Eq. 14, and the equivalent slender block has R = 0.75·g/p² (Eq. 1).
+By default the replacement carries its own uniform mass (``mass="own"``, the voussoir model
+of ``catenary(l′, f′, d)``); ``mass="original"`` puts the original's mass per horizontal
+length on its axis instead. For each thickness the critical optimal four-hinge mechanism
+gives p, ap,min, delta and c1, c2 (Eq. 5.2), and the equivalent slender block has
+R = 0.75·g/p² (Eq. 7.1).
 """
 
 from __future__ import annotations
@@ -20,24 +22,18 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
-from scipy.spatial import cKDTree
+from scipy.optimize import brentq
 
 from rockarch._validate import positive
+from rockarch.arch.band import AXES, Band, lower_bound_band
 from rockarch.arch.fourhinge import ArchMechanism, analyse
-from rockarch.arch.geometry import (
-    CONTINUOUS_BLOCKS,
-    Arch,
-    HorizontalWeights,
-    mass_per_horizontal_length,
-    voussoirs,
-    weighted_catenary,
-)
+from rockarch.arch.geometry import Arch, catenary
 from rockarch.arch.thrust import limit_analysis
+from rockarch.arch.weights import HorizontalWeights
 from rockarch.constants import G
 
 RULES = ("lower-bound", "equivalent")
-_AXIS_SAMPLES = 801
+MASSES = ("own", "original")
 
 
 @dataclass(frozen=True)
@@ -47,8 +43,10 @@ class ReplacementArch:
     Attributes
     ----------
     rule : "lower-bound" or "equivalent".
-    arch : the weighted catenary (span and springings of the original axis).
-    thickness, rise : its uniform thickness and axis rise [m].
+    arch : the replacement (its own coordinates: left springing at (0, 0), span l′).
+    thickness, rise, span : its uniform thickness, axis rise f′ and span l′ [m].
+    springings : (2, 2) P_L, P_R in the original's coordinates.
+    original_span : the original's span l [m].
     mechanism : its critical optimal four-hinge mechanism (p, ap_min, delta, c1..c4).
     """
 
@@ -56,6 +54,9 @@ class ReplacementArch:
     arch: Arch
     thickness: float
     rise: float
+    span: float
+    springings: np.ndarray
+    original_span: float
     mechanism: ArchMechanism
 
     @property
@@ -68,82 +69,64 @@ class ReplacementArch:
 
     @property
     def R_block(self) -> float:  # noqa: N802 - the field's name
-        """Half-diagonal of the equivalent slender block, R = 0.75·g/p² (Eq. 1) [m]."""
+        """Half-diagonal of the equivalent slender block, R = 0.75·g/p² (Eq. 7.1) [m]."""
         return 0.75 * self.mechanism.thrust.g / self.p**2
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
+        """The ``replacement`` object of ``rockarch design --json``.
+
+        Thickness and span are given per the replacement's own span l′ (as the paper's
+        0.0207) and per the original's span l (as the paper's 0.0293).
+        """
         m = self.mechanism
-        return {"rule": self.rule, "thickness": self.thickness, "rise": self.rise,
-                "span": self.arch.span, "p": m.p, "ap_min": m.ap_min, "delta": m.delta,
-                "c1": m.c1, "c2": m.c2, "R_block": self.R_block}
+        return {"rule": self.rule, "thickness": self.thickness, "span": self.span,
+                "rise": self.rise, "p": m.p, "ap_min": m.ap_min,
+                "thickness_over_span": self.thickness / self.span,
+                "thickness_over_original_span": self.thickness / self.original_span,
+                "span_over_original_span": self.span / self.original_span,
+                "rise_over_span": self.rise / self.span,
+                "springings": self.springings.tolist(),
+                "delta": m.delta_end, "delta_u": m.delta, "c1": m.c1, "c2": m.c2,
+                "R_block": self.R_block}
 
 
-def _inscribed_half_thickness(axis_arch: Arch, tree_in: cKDTree, tree_ex: cKDTree,
-                              sign_fn) -> float:
-    """Smallest distance from the axis to the original intrados/extrados (negative if the
-    axis leaves the original contour)."""
-    sig = np.linspace(0.0, 1.0, _AXIS_SAMPLES)
-    pts, _, _ = axis_arch.axis_at(sig)
-    di, _ = tree_in.query(pts)
-    de, _ = tree_ex.query(pts)
-    h = float(min(di.min(), de.min()))
-    return h if sign_fn(pts) else -h
+def _shifted_weights(w: HorizontalWeights, band: Band) -> HorizontalWeights:
+    """The original's q(x) in the replacement's coordinates, covering [0, l′]."""
+    edges = w.edges - band.left[0]
+    edges[0] = min(edges[0], 0.0)
+    edges[-1] = max(edges[-1], band.span)
+    return HorizontalWeights(edges=edges, q=w.q)
 
 
-def _contour_trees(original: Arch):
-    v = voussoirs(original, CONTINUOUS_BLOCKS)
+def replacement_arch(band: Band, thickness: float, *, mass: str = "own") -> Arch:
+    """The replacement arch on the band's axis with a given uniform thickness (Eq. 7.3/7.4).
 
-    def dense(curve: np.ndarray, k: int = 8) -> np.ndarray:
-        seg = np.diff(curve, axis=0)
-        t = np.linspace(0.0, 1.0, k, endpoint=False)
-        pts = (curve[:-1, None, :] + t[None, :, None] * seg[:, None, :]).reshape(-1, 2)
-        return np.vstack([pts, curve[-1]])
-
-    # inside test: the axis point lies on the extrados side of the intrados and vice versa,
-    # judged at the nearest joint (joints are normal to the original axis)
-    tree_axis = cKDTree(v.points)
-    normal = np.column_stack([-v.tangent[:, 1], v.tangent[:, 0]])
-
-    def inside(pts: np.ndarray) -> bool:
-        _, k = tree_axis.query(pts)
-        off = np.einsum("ij,ij->i", pts - v.points[k], normal[k])
-        return bool(np.all(np.abs(off) <= 0.5 * v.thickness[k] * (1 + 1e-12)))
-
-    return cKDTree(dense(v.intrados)), cKDTree(dense(v.extrados)), inside
-
-
-def lower_bound_axis(original: Arch, weights: HorizontalWeights | None = None
-                     ) -> tuple[float, float]:
-    """(rise, d̄): the weighted-catenary axis rise maximising the inscribed uniform thickness.
-
-    The axis runs between the original axis' springings and carries ``weights`` (default:
-    the original's mass per horizontal length). Raises ValueError if no such axis fits.
+    A symmetric catenary band gives ``catenary(l′, f′, d)``; otherwise the axis is the band's
+    curve between P_L and P_R, shifted so that P_L is at (0, 0).
     """
-    w = weights if weights is not None else mass_per_horizontal_length(original)
-    tree_in, tree_ex, inside = _contour_trees(original)
-    span = original.span
+    if mass not in MASSES:
+        raise ValueError(f"replacement mass must be one of {', '.join(MASSES)}, got {mass!r}")
+    d = positive("thickness", thickness)
+    span, rise = band.span, band.rise
+    if band.axis == "catenary" and band.symmetric:
+        arch = catenary(span, rise, d)
+    else:
+        x_l, y_l = float(band.left[0]), float(band.left[1])
 
-    def half(rise: float) -> float:
-        a = weighted_catenary(span, rise, 0.01 * span, weights=w)
-        return _inscribed_half_thickness(a, tree_in, tree_ex, inside)
+        def axis_fn(t):
+            x = x_l + np.asarray(t, dtype=float) * span
+            return (x - x_l, band.y(x) - y_l, np.full_like(x, span), band.dy(x) * span)
 
-    f0 = original.rise
-    grid = np.linspace(0.7 * f0, 1.3 * f0, 13)
-    vals = np.array([half(f) for f in grid])
-    k = int(np.argmax(vals))
-    if vals[k] <= 0:
-        raise ValueError("no weighted catenary with the arch's own mass distribution fits "
-                         "inside its contour between its springings")
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    res = minimize_scalar(lambda f: -half(f), bounds=(lo, hi), method="bounded",
-                          options={"xatol": 1e-6 * f0})
-    rise = float(res.x) if -res.fun >= vals[k] else float(grid[k])
-    return rise, 2.0 * max(-float(res.fun), float(vals[k]))
+        name = "catenary" if band.axis == "catenary" else "weighted catenary"
+        arch = Arch(name, span, rise, d, axis_fn)
+    if mass == "original":
+        arch = arch.with_mass_model("weights", _shifted_weights(band.weights, band))
+    return arch
 
 
 def equivalent_thickness(axis_arch: Arch, ap_min: float, *, g: float = G,
                          d_lo: float | None = None) -> float:
-    """Thickness d̂ on the given axis whose ap,min equals ``ap_min`` (brentq on the LP)."""
+    """Thickness d̂ on the given axis whose ap,min equals ``ap_min`` (Eq. 7.7, brentq on the LP)."""
     target = positive("ap_min", ap_min)
     span = axis_arch.span
 
@@ -170,6 +153,8 @@ class Replacement:
     """Both replacement catenary arches of an arch (paper Sect. 8, Table 2)."""
 
     original: ArchMechanism
+    band: Band
+    mass: str
     lower_bound: ReplacementArch
     equivalent: ReplacementArch
 
@@ -179,30 +164,34 @@ class Replacement:
         return self.lower_bound if rule == "lower-bound" else self.equivalent
 
 
-def replacement(original: Arch, *, g: float = G, rise: float | None = None) -> Replacement:
+def replacement(original: Arch, *, g: float = G, axis: str = "catenary",
+                mass: str = "own") -> Replacement:
     """Replacement catenary arches of ``original`` (lower-bound and equivalent thickness).
 
-    ``rise`` fixes the replacement axis' rise instead of fitting it (e.g. to follow a
-    published geometry); the lower-bound thickness is then the largest that fits on it.
+    Parameters
+    ----------
+    axis : "catenary" (default; uniform-mass catenary family) or "weighted" (the funicular
+        of the original's mass per horizontal length).
+    mass : "own" (default; the replacement's own uniform mass: fits Table 2's c2 to 0.1 %)
+        or "original" (the original's mass per horizontal length on the replacement's axis).
     """
     g = positive("g", g)
+    if axis not in AXES:
+        raise ValueError(f"replacement axis must be one of {', '.join(AXES)}, got {axis!r}")
+    if mass not in MASSES:
+        raise ValueError(f"replacement mass must be one of {', '.join(MASSES)}, got {mass!r}")
     orig = analyse(original, g=g)
-    w = mass_per_horizontal_length(original)
-    if rise is None:
-        rise, d_lb = lower_bound_axis(original, w)
-    else:
-        rise = positive("rise", rise)
-        tree_in, tree_ex, inside = _contour_trees(original)
-        d_lb = 2.0 * _inscribed_half_thickness(
-            weighted_catenary(original.span, rise, 0.01 * original.span, weights=w),
-            tree_in, tree_ex, inside)
-        if d_lb <= 0:
-            raise ValueError(f"the weighted catenary of rise {rise:g} m leaves the arch")
-    axis = weighted_catenary(original.span, rise, d_lb, weights=w)
-    lb = ReplacementArch("lower-bound", axis, d_lb, rise, analyse(axis, g=g))
-    d_eq = equivalent_thickness(axis, orig.ap_min, g=g, d_lo=0.5 * d_lb)
-    eq_arch = axis.with_thickness(d_eq)
-    eq = ReplacementArch("equivalent", eq_arch, d_eq, rise, analyse(eq_arch, g=g))
+    band = lower_bound_band(original, axis=axis)
+    springs = np.stack([band.left, band.right])
+
+    def make(rule: str, arch: Arch) -> ReplacementArch:
+        return ReplacementArch(rule, arch, float(arch.uniform_thickness), band.rise,
+                               band.span, springs, original.span, analyse(arch, g=g))
+
+    lb_arch = replacement_arch(band, band.thickness, mass=mass)
+    lb = make("lower-bound", lb_arch)
+    d_eq = equivalent_thickness(lb_arch, orig.ap_min, g=g, d_lo=0.5 * band.thickness)
+    eq = make("equivalent", lb_arch.with_thickness(d_eq))
     if not math.isfinite(eq.p):
         raise ValueError("the equivalent replacement arch has no four-hinge mechanism")
-    return Replacement(orig, lb, eq)
+    return Replacement(orig, band, mass, lb, eq)

@@ -1,4 +1,4 @@
-"""Thrust-line limit analysis of a voussoir arch as a 4-variable LP (physics note Sect. 4).
+"""Thrust-line limit analysis of a voussoir arch as a 4-variable LP (docs/theory.md Eqs. 4.1–4.3).
 
 Unknowns z = (H, V, M0, lambda): the left springing reaction (H, V), its moment M0 about the
 first joint's axis point, and the horizontal load multiplier. Every voussoir k carries its weight
@@ -24,7 +24,8 @@ import numpy as np
 from scipy.optimize import brentq, linprog
 
 from rockarch._validate import in_range, positive
-from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch, Voussoirs, voussoirs
+from rockarch.arch.cutting import Voussoirs, voussoirs
+from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch
 from rockarch.constants import G
 
 _LAMBDA_CAP = 1e3  # a "mechanism" needing more than 1000 g is no mechanism
@@ -39,14 +40,14 @@ class Hinge:
     y: float
     side: str  # "intrados" | "extrados"
 
-    def as_dict(self, joint: bool = True) -> dict:
+    def to_dict(self, joint: bool = True) -> dict:
         return {"x": self.x, "y": self.y, "side": self.side,
                 "joint": self.joint if joint else None}
 
 
 @dataclass(frozen=True)
 class ThrustResult:
-    """Result of the limit analysis (physics note Sect. 4).
+    """Result of the limit analysis (docs/theory.md §4).
 
     Attributes
     ----------

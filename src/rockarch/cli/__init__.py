@@ -8,7 +8,9 @@ they compose nothing themselves.
 
 from rockarch.cli import (  # noqa: F401 - importing a module registers its commands
     archcmd,
+    fragility,
     oas,
+    records,
     reproduce,
     simulate,
     site,

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 import typer
 
+from rockarch._validate import positive
 from rockarch.arch.geometry import SHAPES
 from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.motion import SIGNALS, GroundMotion, pulse
@@ -161,13 +162,6 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     return np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
 
 
-def check_outputs(*paths: Path | None) -> None:
-    """Every output path's folder exists (checked before any computation)."""
-    for path in paths:
-        if path is not None and not path.resolve().parent.is_dir():
-            raise ValueError(f"{path.parent}: directory does not exist")
-
-
 def echo_err(msg: str) -> None:
     typer.echo(msg, err=True)
 
@@ -217,3 +211,55 @@ def column_blocks(column: str) -> list[np.ndarray]:
     if not rows:
         raise ValueError("--column is empty: give 'B,H;B,H' (bottom to top, metres)")
     return [float_list("--column block", r) for r in rows]
+
+
+# --- MDOF structures (rockarch.systems.mdof_assembly; docs/theory.md §10) -------------------
+
+FRICTION_OPT = typer.Option(None, help="Coulomb friction coefficient of every joint (> 0); "
+                            "absent: joints never slide. --ratio then multiplies the "
+                            "friction-aware ap,min.")
+SPANS_OPT = typer.Option(None, help="Put the arch on piers: number of equal spans (1: an "
+                         "arch on two piers; >= 2: a bridge between abutments).")
+PIER_H_OPT = typer.Option(None, help="Pier height, ground to intrados springing [m].")
+PIER_W_OPT = typer.Option(None, help="Pier width [m].")
+PIER_BLOCKS_OPT = typer.Option(None, help="Blocks per pier (default: about square).")
+ABUT_OPT = typer.Option(None, "--abutments/--end-piers", help="End springings on rigid "
+                        "abutments or on piers (default: abutments for --spans >= 2).")
+WALL_OPT = typer.Option(None, help="A wall in running bond: 'ROWS,COLUMNS' of --block "
+                        "blocks.")
+BLOCK_OPT = typer.Option(None, help="Block size 'B,H' [m] of --wall or of the columns of "
+                         "--colonnade.")
+COLONNADE_OPT = typer.Option(None, help="A colonnade: number of --block columns (2: a "
+                             "trilithon) under one lintel.")
+BAY_OPT = typer.Option(None, help="Colonnade: clear spacing of the columns [m].")
+LINTEL_OPT = typer.Option(None, help="Colonnade: lintel depth [m].")
+ASSEMBLY_OPT = typer.Option(None, help="An assembly of convex blocks from a JSON file "
+                            "(docs/theory.md §10).")
+
+
+def _ints(name: str, text: str, n: int) -> list[int]:
+    vals = float_list(name, text)
+    if len(vals) != n or not all(v == int(v) for v in vals):
+        raise ValueError(f"{name} needs {n} comma-separated integers, got {text!r}")
+    return [int(v) for v in vals]
+
+
+#: The command parameters of the MDOF structure options, passed on to systems.system().
+MDOF_STRUCTURE_KEYS = ("column", "friction", "spans", "pier_height", "pier_width",
+                       "pier_blocks", "abutments", "wall", "block", "colonnade", "bay",
+                       "lintel", "assembly")
+
+
+def mdof_structure(params: dict) -> dict:
+    """The keywords of :func:`rockarch.systems.system` for the MDOF structure options found
+    among a command's ``params`` (its ``locals()``); absent options are left out."""
+    kw = {k: params.get(k) for k in MDOF_STRUCTURE_KEYS if params.get(k) is not None}
+    if "friction" in kw:
+        positive("--friction", kw["friction"])
+    if "column" in kw:
+        kw["column"] = column_blocks(kw["column"])
+    if "wall" in kw:
+        kw["wall"] = _ints("--wall", kw["wall"], 2)
+    if "block" in kw:
+        kw["block"] = list(float_list("--block", kw["block"]))
+    return kw

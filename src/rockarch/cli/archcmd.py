@@ -12,7 +12,8 @@ from rockarch.arch.fourhinge import analyse
 from rockarch.arch.geometry import MASS_MODELS, make_arch
 from rockarch.arch.thrust import minimum_thickness
 from rockarch.cli._app import app
-from rockarch.cli._common import G_OPT, JSON_OPT, Shape, check_outputs, guarded, print_json
+from rockarch.cli._common import G_OPT, JSON_OPT, Shape, guarded, print_json
+from rockarch.output import check_outputs
 from rockarch.systems import check_blocks
 
 
@@ -68,16 +69,16 @@ def arch(
         return
     if thickness is None:
         raise ValueError("--thickness is required (unless --min-thickness)")
-    check_outputs(plot)
+    check_outputs((plot, "--plot", "png"))
     a = make_arch(shape.value, span, rise, positive("--thickness", thickness),
                   mass_model=mass_model)
     res = analyse(a, blocks, g=g, direction=direction)
     if plot:
-        from rockarch.plot_arch import plot_mechanism
+        from rockarch.output.arch_plots import plot_mechanism
 
         plot_mechanism(res, plot)
     if json_out:
-        print_json(res.as_dict())
+        print_json(res.to_dict())
         return
     lines = [
         f"{shape.value} arch: l = {span:g} m, f = {rise:g} m, d = {thickness:g} m, "
@@ -85,10 +86,11 @@ def arch(
            else "continuous (critical optimal mechanism)"),
         f"  ap,min = {res.ap_min:.4f} m/s² (lambda = {res.lambda_:.5f}; virtual work "
         f"g*Bv/Bh = {res.ap_min_vw:.4f})",
-        f"  p = {res.p:.4f} 1/s, delta = {res.delta:.5f} rad, Bv = {res.Bv:.5g}, "
+        f"  p = {res.p:.4f} 1/s, delta = {res.delta_end:.5f} rad (part {res.end_part}, "
+        f"Table 1), delta_u = {res.delta:.5f} rad (coordinate u), Bv = {res.Bv:.5g}, "
         f"Bh = {res.Bh:.5g}, A = {res.A:.5g}",
         f"  c1 = {res.c1:.4f}, c2 = {res.c2:.4f}, c3/c3' = {res.c3:.3f}/{res.c3p:.3f}, "
-        f"c4 = {res.c4:.4f}",
+        f"c4 = {res.c4:.4f} (c4_u = {res.c4_u:.4f})",
         "  hinges: " + ", ".join(f"({h.x:.3f}, {h.y:.3f}) {h.side}" for h in res.hinges),
     ]
     if plot:

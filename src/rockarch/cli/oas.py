@@ -5,39 +5,53 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import numpy as np
 import typer
 
 from rockarch import spectra
 from rockarch.cli._app import app
 from rockarch.cli._common import (
+    ABUT_OPT,
+    ASSEMBLY_OPT,
+    BAY_OPT,
+    BLOCK_OPT,
+    COLONNADE_OPT,
+    COLUMN_OPT,
     CYCLES_OPT,
     DASK_WORKERS_OPT,
+    FRICTION_OPT,
     G_OPT,
     JSON_OPT,
+    LINTEL_OPT,
     NO_STORE_OPT,
     PERIOD_OPT,
+    PIER_BLOCKS_OPT,
+    PIER_H_OPT,
+    PIER_W_OPT,
     RECORD_OPT,
     SCHEDULER_OPT,
     SIGNAL_OPT,
+    SPANS_OPT,
     STORE_OPT,
     TFREE_OPT,
     TOL_OPT,
     UNITS_OPT,
+    WALL_OPT,
     WORKERS_OPT,
     Shape,
     Signal,
     System,
-    check_outputs,
     echo_err,
     guarded,
+    mdof_structure,
     motion_shape,
     p_grid,
     print_json,
     ratio_grid,
     value,
 )
-from rockarch.sweep import open_sweep
+from rockarch.cli._sweep import open_sweep
+from rockarch.output import check_outputs, staged
+from rockarch.output.tables import boundary_table
 from rockarch.systems import system as make_system
 
 
@@ -55,6 +69,11 @@ def oas(
     blocks: int = typer.Option(None, help="fourhinge: voussoirs (critical mechanism); "
                                "default the continuous arch (critical optimal). mdof: "
                                "voussoirs (required)."),
+    column: str = COLUMN_OPT, friction: float = FRICTION_OPT, spans: int = SPANS_OPT,
+    pier_height: float = PIER_H_OPT, pier_width: float = PIER_W_OPT,
+    pier_blocks: int = PIER_BLOCKS_OPT, abutments: bool = ABUT_OPT, wall: str = WALL_OPT,
+    block: str = BLOCK_OPT, colonnade: int = COLONNADE_OPT, bay: float = BAY_OPT,
+    lintel: float = LINTEL_OPT, assembly: Path = ASSEMBLY_OPT,
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
@@ -84,28 +103,29 @@ def oas(
     Pulses have peak ap = ratio·ap,min; a record is scaled so that its PGA = ratio·ap,min.
     For mechanisms p varies by scaling the structure (p ∝ 1/sqrt(size), same shape).
     """
+    structure = mdof_structure(locals())
     sysobj = make_system(system.value, alpha=alpha, shape=value(shape),
                          rise_over_span=rise_over_span,
                          thickness_over_span=thickness_over_span, blocks=blocks,
                          mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
-                         restitution=restitution, t_free=t_free)
+                         restitution=restitution, t_free=t_free, **structure)
     shape_motion = motion_shape(signal, period, cycles, record, units)
     ps = p_grid(p, p_min, p_max, p_steps)
     ratios = ratio_grid(ratio_min, ratio_max, ratio_steps)
-    check_outputs(out, plot)
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
     with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
                     store_dir=store, no_store=no_store, n_sims=ps.size * ratios.size,
                     echo=echo_err) as (executor, chunk_store):
         ds = spectra.compute_oas(sysobj, shape_motion, ps, ratios, tol=tol,
                                  progress=progress and sys.stderr.isatty(),
                                  executor=executor, store=chunk_store)
-    if out is not None:
-        spectra.save(ds, out)
-    if plot is not None:
-        from rockarch.plot import plot_oas, save_figure
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        if out is not None:
+            spectra.save(ds, out_tmp)
+        if plot is not None:
+            from rockarch.output.figures import plot_oas, save_figure
 
-        ax = plot_oas(ds)
-        save_figure(ax.figure, plot)
+            save_figure(plot_oas(ds).figure, plot_tmp)
     if json_out:
         print_json({
             "p": ds["p"].values,
@@ -115,10 +135,7 @@ def oas(
         })
         return
     typer.echo(f"OAS of {sysobj.name} for {shape_motion.name}")
-    typer.echo(f"{'p [1/s]':>10}  {'boundary ap/ap,min':>20}")
-    for pv, bv in zip(ds["p"].values, ds["boundary"].values, strict=True):
-        txt = f"{bv:.4f}" if np.isfinite(bv) else f"> {ratios[-1]:g} (none in range)"
-        typer.echo(f"{pv:>10.4g}  {txt:>20}")
+    typer.echo("\n".join(boundary_table(ds["p"].values, ds["boundary"].values, ratios[-1])))
     for path in (out, plot):
         if path is not None:
             typer.echo(f"wrote {path}")

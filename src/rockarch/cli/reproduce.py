@@ -8,6 +8,7 @@ import typer
 
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, echo_err, guarded, print_json
+from rockarch.output import check_outputs
 
 
 @app.command("reproduce", short_help="The paper's tables and figures, paper vs computed.")
@@ -17,12 +18,11 @@ def reproduce_command(
     quick: bool = typer.Option(False, "--quick", help="Coarse grids (about a minute)."),
     json_out: bool = JSON_OPT,
 ) -> None:
-    """The paper's tables and figures (Tables 1-2, Figs. 15-17 and 19, the Sect. 9 example)
+    """The paper's tables and figures (Figs. 2-3, Tables 1-2, Figs. 15-17 and 19, Sect. 9)
     into OUT, with an index.html showing paper vs computed side by side."""
     from rockarch.reproduce import reproduce
 
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"{out}: exists and is not a folder")
+    check_outputs((out, "--out", "dir"))
     reproduce(out, quick=quick, log=echo_err)
     index = out / "index.html"
     if json_out:

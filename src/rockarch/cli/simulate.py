@@ -4,19 +4,30 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import typer
 
 from rockarch._validate import positive
 from rockarch.cli._app import app, simulate_app
 from rockarch.cli._common import (
+    ABUT_OPT,
+    ASSEMBLY_OPT,
+    BAY_OPT,
+    BLOCK_OPT,
+    COLONNADE_OPT,
     COLUMN_OPT,
     CYCLES_OPT,
+    FRICTION_OPT,
     G_OPT,
     JSON_OPT,
+    LINTEL_OPT,
     MDOF_BLOCKS_OPT,
     MDOF_H_OPT,
     MDOF_TOL_OPT,
     PERIOD_OPT,
+    PIER_BLOCKS_OPT,
+    PIER_H_OPT,
+    PIER_W_OPT,
     PLOT_OPT,
     RATIO_OPT,
     RECORD_OPT,
@@ -25,34 +36,35 @@ from rockarch.cli._common import (
     SHAPE_OPT,
     SIGNAL_OPT,
     SPAN_OPT,
+    SPANS_OPT,
     TFREE_OPT,
     THICK_OPT,
     UNITS_OPT,
+    WALL_OPT,
     Shape,
     Signal,
-    check_outputs,
-    column_blocks,
     guarded,
+    mdof_structure,
     motion_shape,
     print_json,
     value,
 )
+from rockarch.output import check_outputs
 from rockarch.systems import scale_to_ratio
 from rockarch.systems import system as make_system
 
 
 def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot,
-         json_out) -> None:
+         json_out, extra: dict | None = None) -> None:
     """Scale the motion to a peak of ratio·ap,min, run, then print JSON or a summary."""
     shape = motion_shape(signal, period, cycles, record, units)
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
-    check_outputs(plot)
     resp = sysobj.simulate(shape, ratio=ratio)
     if plot is not None:
-        from rockarch.plot import plot_response, save_figure
+        from rockarch.output.figures import plot_response, save_figure
 
         save_figure(plot_response(resp, mot), plot)
-    s = resp.to_dict()
+    s = {**resp.to_dict(), **(extra or {})}
     if json_out:
         print_json(s)
         return
@@ -80,6 +92,7 @@ def simulate_block(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rigid block (exact Housner equation) on a pulse or a record."""
+    check_outputs((plot, "--plot", "png"))
     if width is None and height is None and (p is None or alpha is None):
         raise ValueError("give the block: --p P --alpha A (or --width B --height H)")
     sysobj = make_system("block", alpha=alpha, p=p, width=width, height=height,
@@ -105,6 +118,7 @@ def simulate_fourhinge(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate the four-hinge mechanism of an arch (exact linkage kinematics, Sect. 5)."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("fourhinge", shape=shape.value, span=positive("--span", span),
                          rise=positive("--rise", rise),
                          thickness=positive("--thickness", thickness), blocks=blocks, g=g,
@@ -128,6 +142,7 @@ def simulate_frame(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate a rocking frame: two rigid columns and a rigid lintel (paper Fig. 1)."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("frame", alpha=alpha, p=p, mass_ratio=mass_ratio, g=g,
                          restitution=restitution, t_free=t_free)
     mech = sysobj.mechanism
@@ -148,27 +163,35 @@ def simulate_sdof(
     plot: Path = PLOT_OPT, json_out: bool = JSON_OPT,
 ) -> None:
     """Simulate any SDOF mechanism given by (p, delta, ap,min) (equivalence form, ref. [13])."""
+    check_outputs((plot, "--plot", "png"))
     sysobj = make_system("sdof", p=p, delta=delta, ap_min=ap_min, g=g,
                          restitution=restitution, t_free=t_free)
     _run(sysobj, sysobj.name, signal, period, cycles, record, units, ratio, plot, json_out)
 
 
-def _mdof_system(shape, span, rise, thickness, blocks, column, g, t_free, h_factor, gap_tol):
-    """The MDOF structure of `simulate mdof` / `animate`: an arch or a column."""
-    if column is None and None in (shape, span, rise, thickness, blocks):
+def _mdof_system(shape, span, rise, thickness, blocks, structure, g, t_free, h_factor,
+                 gap_tol):
+    """The MDOF structure of `simulate mdof` / `animate`: an arch (alone or on piers) or
+    the structure of the other options (``structure``: :func:`mdof_structure` keywords)."""
+    others = {"column", "wall", "colonnade", "assembly"} & set(structure)
+    if not others and None in (shape, span, rise, thickness, blocks):
         raise ValueError("give the arch: --shape S --span L --rise F --thickness D --blocks N "
-                         "(or a column: --column 'B,H;B,H')")
-    if column is None:
+                         "(or --column 'B,H;B,H', --wall R,C --block B,H, --colonnade N "
+                         "--block B,H --bay S --lintel D, or --assembly FILE.json)")
+    if not others:
         span, rise = positive("--span", span), positive("--rise", rise)
         thickness = positive("--thickness", thickness)
     return make_system("mdof", shape=value(shape), span=span, rise=rise, thickness=thickness,
-                       blocks=blocks, column=None if column is None else column_blocks(column),
-                       g=g, t_free=t_free, h_factor=h_factor, gap_tol=gap_tol)
+                       blocks=blocks, g=g, t_free=t_free, h_factor=h_factor, gap_tol=gap_tol,
+                       **structure)
 
 
 def _mdof_header(a) -> str:
-    return (f"{a.name}: {a.n_blocks} blocks, {a.n_joints} joints, ap,min={a.ap_min:.4g} m/s², "
-            f"p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad (Moreau–Jean, docs/mdof.md)")
+    fr = "" if a.frictionless else f", friction {np.min(a.mu):g}" + (
+        "" if np.ptp(a.mu) == 0 else f"..{np.max(a.mu):g}")
+    return (f"{a.name}: {a.n_blocks} blocks, {a.n_joints} joints{fr}, "
+            f"ap,min={a.ap_min:.4g} m/s², p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad "
+            "(Moreau–Jean, docs/mdof.md)")
 
 
 @simulate_app.command("mdof")
@@ -176,19 +199,28 @@ def _mdof_header(a) -> str:
 def simulate_mdof(
     shape: Shape = SHAPE_OPT, span: float = SPAN_OPT, rise: float = RISE_OPT,
     thickness: float = THICK_OPT, blocks: int = MDOF_BLOCKS_OPT, column: str = COLUMN_OPT,
+    friction: float = FRICTION_OPT, spans: int = SPANS_OPT, pier_height: float = PIER_H_OPT,
+    pier_width: float = PIER_W_OPT, pier_blocks: int = PIER_BLOCKS_OPT,
+    abutments: bool = ABUT_OPT, wall: str = WALL_OPT, block: str = BLOCK_OPT,
+    colonnade: int = COLONNADE_OPT, bay: float = BAY_OPT, lintel: float = LINTEL_OPT,
+    assembly: Path = ASSEMBLY_OPT,
     signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
     record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
     t_free: float = TFREE_OPT, g: float = G_OPT, h_factor: float = MDOF_H_OPT,
-    gap_tol: float = MDOF_TOL_OPT, json_out: bool = JSON_OPT,
+    gap_tol: float = MDOF_TOL_OPT, plot: Path = typer.Option(
+        None, help="Write a PNG of the largest block rotation / delta and a_g over time."),
+    json_out: bool = JSON_OPT,
 ) -> None:
-    """Simulate a multi-block arch (any joint may open and close) or column (MDOF model).
+    """Simulate a multi-block structure whose joints open, close and (with --friction)
+    slide: an arch (alone, on piers, a bridge), a column, a wall, a colonnade, a JSON file.
 
-    --ratio is relative to the ap,min of the N-voussoir arch (thrust-line LP).
+    --ratio is relative to the structure's ap,min (limit analysis, friction included).
     """
-    sysobj = _mdof_system(shape, span, rise, thickness, blocks, column, g, t_free, h_factor,
-                          gap_tol)
+    check_outputs((plot, "--plot", "png"))
+    sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
+                          t_free, h_factor, gap_tol)
     _run(sysobj, _mdof_header(sysobj.assembly), signal, period, cycles, record, units, ratio,
-         None, json_out)
+         plot, json_out, extra={"ap_min": sysobj.ap_min})
 
 
 @app.command(short_help="GIF of an MDOF arch or column in motion.")
@@ -197,25 +229,37 @@ def animate(
     out: Path = typer.Option(..., help="GIF file to write."),
     shape: Shape = SHAPE_OPT, span: float = SPAN_OPT, rise: float = RISE_OPT,
     thickness: float = THICK_OPT, blocks: int = MDOF_BLOCKS_OPT, column: str = COLUMN_OPT,
+    friction: float = FRICTION_OPT, spans: int = SPANS_OPT, pier_height: float = PIER_H_OPT,
+    pier_width: float = PIER_W_OPT, pier_blocks: int = PIER_BLOCKS_OPT,
+    abutments: bool = ABUT_OPT, wall: str = WALL_OPT, block: str = BLOCK_OPT,
+    colonnade: int = COLONNADE_OPT, bay: float = BAY_OPT, lintel: float = LINTEL_OPT,
+    assembly: Path = ASSEMBLY_OPT,
     signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,
     record: Path = RECORD_OPT, units: str = UNITS_OPT, ratio: float = RATIO_OPT,
     t_free: float = typer.Option(3.0, help="Free motion after the ground motion ends [s]."),
     g: float = G_OPT, h_factor: float = MDOF_H_OPT, gap_tol: float = MDOF_TOL_OPT,
-    fps: int = typer.Option(20, help="Frames per second."),
-    frames: int = typer.Option(150, help="Largest number of frames."),
-    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1)."),
+    fps: int = typer.Option(20, help="Frames per second of simulated time (the GIF plays "
+                            "in real time)."),
+    frames: int = typer.Option(150, help="Largest number of frames (when fps × duration is "
+                               "larger, this many, spread evenly over the motion)."),
+    magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1); the held "
+                                  "last frame is magnified further when its displacements "
+                                  "would be too small to see (the factor is in its title)."),
+    progress: bool = typer.Option(None, "--progress/--no-progress",
+                                  help="Progress bar on stderr (default: when stderr is a "
+                                  "terminal)."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Animate an MDOF arch or column on a ground motion: blocks, open joints, a_g(t)."""
-    from rockarch.mdof.animate import animate as write_gif
+    from rockarch.output.animation import animate as write_gif
+    from rockarch.output.animation import check_options
 
-    sysobj = _mdof_system(shape, span, rise, thickness, blocks, column, g, t_free, h_factor,
-                          gap_tol)
-    if out.suffix.lower() != ".gif":
-        raise ValueError(f"--out must be a .gif file, got {out}")
-    check_outputs(out)
+    check_options(fps, frames, magnify)
+    check_outputs((out, "--out", "gif"))
+    sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
+                          t_free, h_factor, gap_tol)
     resp = sysobj.simulate(motion_shape(signal, period, cycles, record, units), ratio=ratio)
-    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify)
+    write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify, progress=progress)
     if json_out:
         print_json({**resp.to_dict(), "out": str(out)})
         return

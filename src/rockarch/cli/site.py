@@ -23,15 +23,15 @@ from rockarch.cli._common import (
     TOL_OPT,
     WORKERS_OPT,
     Shape,
-    check_outputs,
     echo_err,
     guarded,
     p_grid,
     print_json,
     ratio_grid,
 )
+from rockarch.cli._sweep import open_sweep
 from rockarch.design import design_check
-from rockarch.sweep import open_sweep
+from rockarch.output import check_outputs, staged
 
 
 @app.command("site-oas", short_help="Site OAS of a set of records: envelope and percentile.")
@@ -60,7 +60,7 @@ def site_oas(
 ) -> None:
     """Site OAS: slender-block OAS of every record, their envelope and percentile curve."""
     paths = list(records or []) + list(more or [])
-    check_outputs(out, plot)
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
     motions, hashes = site_mod.load_records(paths, units)
     ps = p_grid(None, p_min, p_max, p_steps)
     if ratio_steps < 2:
@@ -74,11 +74,15 @@ def site_oas(
                                tol=tol, hashes=hashes, t_free=t_free,
                                progress=sys.stderr.isatty(), executor=executor,
                                store=chunk_store)
-    site_mod.save(ds, out)
-    if plot is not None:
-        from rockarch.plot import plot_site, save_figure
+    from rockarch.charsite import characteristic
 
-        save_figure(plot_site(ds), plot)
+    ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        site_mod.save(ds, out_tmp)
+        if plot is not None:
+            from rockarch.output.figures import plot_site, save_figure
+
+            save_figure(plot_site(ds), plot_tmp)
     if json_out:
         print_json({"records": list(ds["record_name"].values), "p": ds["p"].values,
                     "envelope": ds["envelope"].values,
@@ -96,10 +100,25 @@ def design(
     span: float = typer.Option(..., help="Span l of the axis [m]."),
     rise: float = typer.Option(..., help="Rise f of the axis [m]."),
     thickness: float = typer.Option(..., help="Uniform thickness d [m]."),
-    site_file: Path = typer.Option(..., "--site", help="Site OAS file (rockarch site-oas)."),
+    site_file: Path = typer.Option(None, "--site", help="Site OAS file (rockarch site-oas)."),
+    records: list[Path] = typer.Option(None, "--records", help="Instead of --site: records "
+                                       "(folder or files); the site OAS, its characteristic "
+                                       "curves and the replacement's fragility are computed "
+                                       "(and kept in the store) on the fly."),
+    pga: float = typer.Option(None, help="With --records: probability of collapse at this "
+                              "PGA [m/s²]."),
+    probability: float = typer.Option(0.1, help="With --records: the PGA at this "
+                                      "probability of collapse."),
     thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
                                        "equivalent (same ap,min) or lower-bound."),
-    curve: str = typer.Option("envelope", help="Site curve: envelope or characteristic."),
+    curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
+                              "(percentile), normalised (over p·Tm) or simplified (two "
+                              "durations)."),
+    replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
+                                         "(uniform mass) or weighted (the funicular of the "
+                                         "arch's own mass)."),
+    replacement_mass: str = typer.Option("own", help="Replacement mass: own (its uniform "
+                                         "mass) or original (the arch's mass on its axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
     json_out: bool = JSON_OPT,
@@ -108,35 +127,72 @@ def design(
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
-    if curve not in ("envelope", "characteristic"):
-        raise ValueError(f"--curve must be envelope or characteristic, got {curve!r}")
-    check_outputs(report)
-    site_ds = site_mod.load(site_file)
+    check_outputs((report, "--report", "html"))
+    if (site_file is None) == (not records):
+        raise ValueError("give either --site FILE or --records DIR")
+    if records:
+        from rockarch import charsite
+        from rockarch.suite import read_suite
+
+        suite = read_suite(records)
+        n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
+        with open_sweep(n_sims=n_sims, echo=echo_err) as (executor, chunk_store):
+            site_ds = charsite.site_from_records(suite, executor=executor, store=chunk_store,
+                                                progress=sys.stderr.isatty())
+    else:
+        site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
-    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g)
+    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g,
+                       axis=replacement_axis, mass=replacement_mass)
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
+    extra, html_extra = {}, ""
+    if records:
+        from rockarch import fragility as fr
+
+        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
+                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                                 ratio=site_ds["ratio"].values)
+        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
+        if report is not None:
+            from rockarch.plot_fragility import fragility_html
+
+            html_extra = fragility_html(frag, extra["fragility"])
     if report is not None:
-        from rockarch.report import write_report
+        from rockarch.output.report import write_report
 
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
-               f"--thickness {thickness:g} --site {site_file} --thickness-rule "
-               f"{thickness_rule} --curve {curve} --g {g:g}")
-        write_report(res, site_ds, report, command=cmd, site_path=str(site_file),
+               f"--thickness {thickness:g} "
+               + (f"--site {site_file}" if site_file else
+                  " ".join(f"--records {r}" for r in records))
+               + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
+               f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
+        write_report(res, site_ds, report, command=cmd,
+                     site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
     if json_out:
-        print_json(res.as_dict())
+        print_json({**res.to_dict(), **extra})
         return
     c = res.chosen
     typer.echo(f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = {thickness:g} m: "
                f"ap,min = {res.replacement.original.ap_min:.4f} m/s²")
-    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m, "
-               f"f = {c.rise:.4f} m, p = {c.p:.4f} 1/s, ap,min = {c.ap_min:.4f} m/s²")
+    typer.echo(f"replacement catenary ({thickness_rule}): d = {c.thickness:.4f} m "
+               f"(d/l' = {c.thickness / c.span:.4f}, d/l = {c.thickness / span:.4f}), "
+               f"l' = {c.span:.4f} m, f' = {c.rise:.4f} m, p = {c.p:.4f} 1/s, "
+               f"ap,min = {c.ap_min:.4f} m/s²")
     typer.echo(f"site {curve} at p: ap/ap,min = {res.ratio:.4f} -> safe PGA "
                f"{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
+    if extra:
+        f = extra["fragility"]
+        typer.echo(f"fragility of the replacement over {f['n_records']} records: median PGA "
+                   f"{f['median']:.3f} m/s², beta {f['beta']:.3f}")
+        for key in ("probability_at_pga", "pga_at_probability"):
+            if key in f:
+                typer.echo(f"  P(collapse) = {f[key]['probability']:.3g} at PGA "
+                           f"{f[key]['pga']:.3f} m/s²")
     if report is not None:
         typer.echo(f"wrote {report}")
 

@@ -94,20 +94,6 @@ class Assembly:
         """(nj,) joint lengths."""
         return np.hypot(*(self.corners[:, 1] - self.corners[:, 0]).T)
 
-    def kernel_args(self) -> tuple:
-        """(mass, inertia, c0, rl, rr, n0, thick_min) for :mod:`rockarch.mdof.kernels`."""
-        nb_, nj = self.n_blocks, self.n_joints
-        rl = np.empty((nj, 2, 2))
-        rr = np.empty((nj, 2, 2))
-        for k in range(nj):
-            rl[k] = self.corners[k] - (self.centroid[k - 1] if k >= 1 else 0.0)
-            rr[k] = self.corners[k] - (self.centroid[k] if k < nb_ else 0.0)
-        return (np.ascontiguousarray(self.mass, dtype=float),
-                np.ascontiguousarray(self.inertia, dtype=float),
-                np.ascontiguousarray(self.centroid, dtype=float), rl, rr,
-                np.ascontiguousarray(self.normal, dtype=float),
-                float(self.thickness.min()))
-
     def merged(self, keep, *, name: str | None = None) -> Assembly:
         """The same structure with only the joints ``keep`` able to open: the blocks between
         consecutive kept joints are glued into one rigid body (e.g. an arch whose only weak
@@ -243,7 +229,7 @@ def column(blocks, *, g: float = G, name: str | None = None) -> Assembly:
 
 
 def single_block(width: float, height: float, *, g: float = G) -> Assembly:
-    """One rectangular block on the ground (Housner's block, physics note Sect. 1)."""
+    """One rectangular block on the ground (Housner's block, docs/theory.md §1)."""
     return column([(width, height)], g=g, name=f"block B={width:g} H={height:g}")
 
 

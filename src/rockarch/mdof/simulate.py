@@ -1,4 +1,11 @@
-"""Simulation of MDOF assemblies (Moreau–Jean, see :mod:`rockarch.mdof.kernels`)."""
+"""Simulation of MDOF assemblies (Moreau–Jean; docs/theory.md §6, §9).
+
+Two steppers behind one API: a chain without friction (arch, column, block: joint k between
+body k−1 and body k, every μ infinite) runs on :mod:`rockarch.mdof.chain_stepper` (exact
+banded active-set contact solve, O(N)); any other assembly (a general contact graph or any
+finite friction coefficient) on :mod:`rockarch.mdof.graph_stepper` (non-smooth
+Gauss–Seidel with the joints' Coulomb cones).
+"""
 
 from __future__ import annotations
 
@@ -11,8 +18,10 @@ from rockarch import limits
 from rockarch._validate import in_range
 from rockarch.constants import GAP_TOL, T_FREE
 from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
-from rockarch.mdof import kernels as _k
+from rockarch.mdof import chain_stepper as _k
+from rockarch.mdof import graph_stepper as _g
 from rockarch.mdof.assembly import Assembly
+from rockarch.mdof.kernel_data import chain_model, graph_model
 from rockarch.motion import GroundMotion
 from rockarch.response import Batch, Response, run_batch
 
@@ -31,6 +40,8 @@ class MDOFResponse(Response):
     frame), ``joints`` (nt, nj) joint state: 0 closed, 1 rotating about corner 0 (corner 1
     open), 2 about corner 1 (corner 0 open), 3 both corners open; ``energy`` (nt,) kinetic +
     potential energy relative to the start (ground frame, per unit depth and density).
+    ``max_slip`` is the largest tangential offset of the two sides of any joint [m] (0 for
+    the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding at once.
     """
 
     assembly: Assembly
@@ -43,10 +54,15 @@ class MDOFResponse(Response):
     h: float
     lcp_failures: int
     ground: GroundMotion | None = None
+    max_slip: float = 0.0
+    sliding_contacts_max: int = 0
 
     def to_dict(self) -> dict:
-        """The verdict plus ``open_joints_max`` (the CLI's ``--json`` output)."""
-        return {**super().to_dict(), "open_joints_max": int(self.open_joints_max)}
+        """The verdict plus ``open_joints_max``, ``max_slip`` (m) and
+        ``sliding_contacts_max`` (the CLI's ``--json`` output)."""
+        return {**super().to_dict(), "open_joints_max": int(self.open_joints_max),
+                "max_slip": float(self.max_slip),
+                "sliding_contacts_max": int(self.sliding_contacts_max)}
 
     def corners_at(self, i: int) -> np.ndarray:
         """Block outlines at record i: list of (K, 2) arrays in the ground frame."""
@@ -60,6 +76,11 @@ class MDOFResponse(Response):
             out.append(np.stack([x + c * rel[:, 0] - s * rel[:, 1],
                                  y + s * rel[:, 0] + c * rel[:, 1]], axis=1))
         return out
+
+
+def uses_chain_stepper(assembly: Assembly) -> bool:
+    """True if the assembly runs on the banded chain stepper (a chain, no friction)."""
+    return assembly.is_chain and assembly.frictionless
 
 
 def _motion_arrays(motion: GroundMotion | None):
@@ -109,10 +130,16 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     cap = n_steps // rec + 2
     out_t, out_q = np.zeros(cap), np.zeros((cap, nb_, 3))
     out_s, out_e = np.zeros((cap, nj), dtype=np.int8), np.zeros(cap)
-    mass, ine, c0, rl, rr, n0, tmin = assembly.kernel_args()
-    st, tc, mx, imp, nopen, n_rec, steps, fails = _k.run(
-        mass, ine, c0, rl, rr, n0, scale, tk, ak, 1.0, assembly.g, h, t_end, duration,
-        gap_tol, tmin, assembly.delta_ref, rec, out_t, out_q, out_s, out_e)
+    if uses_chain_stepper(assembly):
+        model = chain_model(assembly)
+        out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
+                     out_q, out_s, out_e) + (0.0, 0)
+    else:
+        model = graph_model(assembly)
+        out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
+                     out_q, out_s, out_e)
+    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide = out
+    c0 = model.c0
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
     q0[0, :, :2] = c0 * scale
@@ -124,7 +151,8 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
         t_overturn=float(tc) if st == 1 else None, max_rotation_ratio=float(mx),
         t_end=float(out_t[n_rec - 1]) if n_rec else 0.0,
         impacts=int(imp), open_joints_max=int(nopen), steps=int(steps), h=h,
-        lcp_failures=int(fails), ground=motion)
+        lcp_failures=int(fails), ground=motion, max_slip=float(slip),
+        sliding_contacts_max=int(n_slide))
 
 
 def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
@@ -142,14 +170,18 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
     pr = assembly.p_ref if p_ref is None else float(p_ref)
     unit = motion.normalized()
     tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)
-    mass, ine, c0, rl, rr, n0, tmin = assembly.kernel_args()
+    chain = uses_chain_stepper(assembly)
+    model = chain_model(assembly) if chain else graph_model(assembly)
 
     def run(pf, rf):
         scales = (pr / pf) ** 2
         hs = h_factor / (assembly.p_ref / np.sqrt(scales))
-        return _k.run_batch(
-            mass, ine, c0, rl, rr, n0, scales, tk, ak, np.ascontiguousarray(rf * ap),
-            assembly.g, hs, float(unit.duration + t_free), float(unit.duration), gap_tol,
-            tmin, assembly.delta_ref)
+        args = (model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
+                float(unit.duration + t_free), float(unit.duration), gap_tol)
+        if chain:
+            out = _k.run_batch(*args)
+            return out + (np.zeros(scales.size), np.zeros(scales.size, dtype=np.int64))
+        return _g.run_batch(*args)
 
-    return run_batch(p, ratio, run, extras=("open_joints_max", "lcp_failures"))
+    return run_batch(p, ratio, run, extras=("open_joints_max", "lcp_failures", "max_slip",
+                                            "sliding_contacts_max"))

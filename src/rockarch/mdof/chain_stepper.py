@@ -1,4 +1,4 @@
-"""Numba kernels of the MDOF rocking model (reach them through :mod:`rockarch.mdof`).
+"""The chain stepper of the MDOF model (frictionless chains; reach it through :mod:`rockarch.mdof`).
 
 Moreau–Jean time stepping (midpoint form) of a *chain* of planar rigid bodies: joint k
 lies between body k−1 (its "left/lower" side L) and body k (its "right/upper" side R);
@@ -21,7 +21,7 @@ constraint along the joint line (transmits any shear while the joint touches). O
 
 Step 4 is the kinetic-energy projection of v_free onto the admissible velocities
 (Gauss's principle): it can only remove energy; with restitution 0 it is the inelastic
-impact law of physics note Sect. 5 (for a block, Housner's r).
+impact law, docs/theory.md Eq. (5.3) (for a block, Housner's r, Eq. (1.6)).
 
 Collapse (status 1): the structure has passed its neutral configuration, tested on the
 frozen configuration: starting from rest at q⁺ under gravity alone, the structure moves
@@ -38,40 +38,12 @@ import math
 import numba as nb
 import numpy as np
 
-KD = 5  # half-bandwidth of W (3 rows per joint, neighbouring joints share one body)
+from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp
+from rockarch.mdof.kinematics import advance, cumint
+
 CHECK_EVERY = 4
 #: The collapse test runs once a block has rotated by CHECK_FROM·delta_ref.
 CHECK_FROM = 0.5
-_MAX_PIVOTS = 200
-#: Regularisation of W (relative to its largest diagonal term): W + eps·I is positive
-#: definite, so the LCP has one solution even for a statically indeterminate (closed) arch;
-#: it lets a closed contact creep at U_n = −eps·Λ (≈ 1e-8·g·h: negligible).
-EPS_REG = 1e-8
-#: Sign tolerance of the pivoting (relative to g·h): above the solve's round-off (cond ≈ 1/EPS_REG).
-TOL_LCP = 1e-7
-
-
-@nb.njit(cache=True)
-def _advance(x, y, ph, vx, vy, om, dt, xo, yo, pho):
-    """Exact rigid motion over dt with a constant spatial twist (rotation about the fixed
-    instantaneous centre); (vx, vy) are turned in place to the centroid's new velocity."""
-    for j in range(x.shape[0]):
-        a = om[j] * dt
-        if a == 0.0:
-            xo[j] = x[j] + vx[j] * dt
-            yo[j] = y[j] + vy[j] * dt
-        else:
-            sa = math.sin(a) / a
-            ca = 2.0 * math.sin(0.5 * a) ** 2 / a
-            xo[j] = x[j] + dt * (sa * vx[j] - ca * vy[j])
-            yo[j] = y[j] + dt * (sa * vy[j] + ca * vx[j])
-            # constant *spatial* twist: the centroid velocity turns with the body
-            c = math.cos(a)
-            s = math.sin(a)
-            u = vx[j]
-            vx[j] = c * u - s * vy[j]
-            vy[j] = s * u + c * vy[j]
-        pho[j] = ph[j] + a
 
 
 @nb.njit(cache=True)
@@ -192,138 +164,6 @@ def _assemble_w(nbod, nj, jl, jr, im, ii, wb):
 
 
 @nb.njit(cache=True)
-def _band_solve(n, kb, rhs, lb, out):
-    """Cholesky of the banded SPD matrix kb (lower band) into lb, then solve for rhs."""
-    for i in range(n):
-        for d in range(KD, -1, -1):
-            j = i - d
-            if j < 0:
-                continue
-            s = kb[i, d]
-            k0 = max(0, i - KD)
-            for k in range(k0, j):
-                s -= lb[i, i - k] * lb[j, j - k]
-            if d == 0:
-                if s <= 0.0:
-                    return False
-                lb[i, 0] = math.sqrt(s)
-            else:
-                lb[i, d] = s / lb[j, 0]
-    for i in range(n):
-        s = rhs[i]
-        for k in range(max(0, i - KD), i):
-            s -= lb[i, i - k] * out[k]
-        out[i] = s / lb[i, 0]
-    for i in range(n - 1, -1, -1):
-        s = out[i]
-        for k in range(i + 1, min(n, i + KD + 1)):
-            s -= lb[k, k - i] * out[k]
-        out[i] = s / lb[i, 0]
-    return True
-
-
-@nb.njit(cache=True)
-def _wmul(n, wb, lam, i):
-    """(W·lam)_i from the lower band."""
-    s = wb[i, 0] * lam[i]
-    for d in range(1, KD + 1):
-        j = i - d
-        if j >= 0:
-            s += wb[i, d] * lam[j]
-        j = i + d
-        if j < n:
-            s += wb[j, d] * lam[j]
-    return s
-
-
-@nb.njit(cache=True)
-def _lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
-    """Exact LCP by a primal active-set method on the equivalent strictly convex QP
-    min ½ΛᵀWΛ + ΛᵀU_free,  Λ_n ≥ 0 (normal rows 3k, 3k+1), Λ_s free (no-slip rows 3k+2
-    with ``inset``; the other rows are fixed at 0).
-
-    ``free`` (warm start in, final working set out): rows not held at their bound. Starts
-    from Λ = 0 (feasible); every full step strictly lowers the objective, so it cannot
-    cycle. Returns the number of iterations (negative if it did not finish).
-    """
-    for i in range(n):
-        lam[i] = 0.0
-        if i % 3 == 2:
-            free[i] = inset[i]
-    for it in range(_MAX_PIVOTS):
-        for i in range(n):
-            for d in range(KD + 1):
-                j = i - d
-                if j < 0:
-                    kb[i, d] = 0.0
-                elif free[i] and free[j]:
-                    kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
-                else:
-                    kb[i, d] = 1.0 if d == 0 else 0.0
-            rhs[i] = -ufree[i] if free[i] else 0.0
-        if not _band_solve(n, kb, rhs, lb, sol):
-            return -1
-        # largest feasible step towards the subproblem's solution
-        alpha = 1.0
-        block = -1
-        for i in range(n):
-            if free[i] and i % 3 != 2 and sol[i] < 0.0:
-                d = sol[i] - lam[i]
-                if d < 0.0:
-                    a = -lam[i] / d
-                    if a < alpha:
-                        alpha = a
-                        block = i
-        for i in range(n):
-            lam[i] += alpha * (sol[i] - lam[i])
-        if block >= 0 and sol[block] < -tol_l:
-            lam[block] = 0.0
-            free[block] = False
-            continue
-        if block >= 0:
-            for i in range(n):
-                lam[i] = sol[i]
-        # optimality: no held row wants to push (U_n ≥ 0 where Λ_n = 0)
-        worst = -tol_u
-        add = -1
-        for i in range(n):
-            if i % 3 == 2 or free[i]:
-                continue
-            u = ufree[i] + _wmul(n, wb, lam, i)
-            if u < worst:
-                worst = u
-                add = i
-        if add < 0:
-            for i in range(n):
-                if i % 3 != 2 and lam[i] < 0.0:
-                    lam[i] = 0.0
-            return it + 1
-        free[add] = True
-    return -_MAX_PIVOTS
-
-
-@nb.njit(cache=True)
-def _cumint(t, tk, ak, ck):
-    """∫_0^t a_g (piecewise linear through the knots, zero outside them)."""
-    m = tk.shape[0]
-    if t <= tk[0]:
-        return 0.0
-    if t >= tk[m - 1]:
-        return ck[m - 1]
-    lo = 0
-    hi = m - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if tk[mid] <= t:
-            lo = mid
-        else:
-            hi = mid
-    dt = t - tk[lo]
-    slope = (ak[lo + 1] - ak[lo]) / (tk[lo + 1] - tk[lo])
-    return ck[lo] + dt * (ak[lo] + 0.5 * dt * slope)
-
-
-@nb.njit(cache=True)
 def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, hh, eps,
                   tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset, free, sol, vx, vy,
                   om):
@@ -351,7 +191,7 @@ def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, h
         if r % 3 == 2:
             free[r] = True
     _assemble_w(nbod, nj, jl, jr, im, ii, wb)
-    its = _lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol)
+    its = lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol)
     for j in range(nbod):
         vx[j] = vfx[j]
         vy[j] = vfy[j]
@@ -396,7 +236,7 @@ def _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb,
             rhs[i] = -gap[i // 3, i % 3]
         else:
             rhs[i] = 0.0
-    if not _band_solve(n, kb, rhs, lb, mu):
+    if not band_solve(n, kb, rhs, lb, mu):
         return
     for r in range(n):
         if mu[r] == 0.0:
@@ -414,14 +254,24 @@ def _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb,
 
 
 @nb.njit(cache=True)
-def run(mass, inertia, c0, rl0, rr0, n0, scale, tk, ak, amp, g, h, t_end, t_motion,
-        gtol_rel, thick_min, delta_ref, rec_every, out_t, out_q, out_state, out_e):
-    """Simulate one assembly, scaled by ``scale`` (lengths), on amp·a(t) [m/s²].
+def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, out_q,
+        out_state, out_e):
+    """Simulate one assembly (``model``: a :class:`rockarch.mdof.kernel_data.ChainModel`),
+    scaled by ``scale`` (lengths), on amp·a(t) [m/s²].
 
     Returns (status, t_collapse, max_rot_over_delta, impacts, open_max, n_rec, steps,
     lcp_failures). status 1: collapsed, 0: safe. Records every ``rec_every`` steps
     (0: no record) into out_* while they have room.
     """
+    mass = model.mass
+    inertia = model.inertia
+    c0 = model.c0
+    rl0 = model.rl
+    rr0 = model.rr
+    n0 = model.n0
+    g = model.g
+    thick_min = model.thick_min
+    delta_ref = model.delta_ref
     nbod = mass.shape[0]
     nj = n0.shape[0]
     n = 3 * nj
@@ -497,8 +347,8 @@ def run(mass, inertia, c0, rl0, rr0, n0, scale, tk, ak, amp, g, h, t_end, t_moti
     n_steps = int(math.ceil(t_end / h))
     cap = out_t.shape[0]
     while step < n_steps:
-        _advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
-        i_new = _cumint(t + h, tk, ak, ck)
+        advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
+        i_new = cumint(t + h, tk, ak, ck)
         agbar = amp * (i_new - i_prev) / h
         i_prev = i_new
         for j in range(nbod):
@@ -510,7 +360,7 @@ def run(mass, inertia, c0, rl0, rr0, n0, scale, tk, ak, amp, g, h, t_end, t_moti
                             inset, free, sol, vx, vy, om)
         if its < 0:
             fails += 1
-        _advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
         any_keep = False
         for r in range(n):
             k = r // 3
@@ -630,8 +480,7 @@ def run(mass, inertia, c0, rl0, rr0, n0, scale, tk, ak, amp, g, h, t_end, t_moti
 
 
 @nb.njit(cache=True, parallel=True)
-def run_batch(mass, inertia, c0, rl0, rr0, n0, scales, tk, ak, amps, g, hs, t_end, t_motion,
-              gtol_rel, thick_min, delta_ref):
+def run_batch(model, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
     """Many (scale, amplitude, step) triples in parallel; summaries only."""
     m = scales.shape[0]
     status = np.zeros(m, dtype=np.int8)
@@ -644,9 +493,8 @@ def run_batch(mass, inertia, c0, rl0, rr0, n0, scales, tk, ak, amps, g, hs, t_en
         dt = np.zeros(0)
         dq = np.zeros((0, 1, 3))
         ds = np.zeros((0, 1), dtype=np.int8)
-        st, tc, mxa, ni, no, _, _, nf = run(mass, inertia, c0, rl0, rr0, n0, scales[i], tk,
-                                            ak, amps[i], g, hs[i], t_end, t_motion, gtol_rel,
-                                            thick_min, delta_ref, 0, dt, dq, ds, dt)
+        st, tc, mxa, ni, no, _, _, nf = run(model, scales[i], tk, ak, amps[i], hs[i], t_end,
+                                            t_motion, gtol_rel, 0, dt, dq, ds, dt)
         status[i] = st
         t_col[i] = tc
         mx[i] = mxa

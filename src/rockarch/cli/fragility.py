@@ -1,0 +1,151 @@
+"""``rockarch fragility``: IDA of one structure over a suite of records and its lognormal
+fragility curve (docs/theory.md Sect. 11.3)."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import typer
+
+from rockarch import fragility as fr
+from rockarch.cli import _common as cc
+from rockarch.cli._app import app
+from rockarch.cli._common import Shape, System, echo_err, guarded, value
+from rockarch.cli._sweep import open_sweep
+from rockarch.output import check_outputs
+from rockarch.suite import read_suite
+from rockarch.systems import system as make_system
+
+#: From this many records the IDA runs on local processes unless told otherwise: each
+#: bisection round is one simulation per record, in parallel only across processes
+#: (benchmarks/fragility.py: 1.9x on 2 cores for 50 records).
+POOL_MIN_RECORDS = 16
+
+
+def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
+    """--im-range LO,HI in display units (g for pga and sa, m/s for pgv) → SI."""
+    if text is None:
+        return None
+    from rockarch.plot_fragility import display_units
+
+    vals = cc.float_list("--im-range", text)
+    if vals.size != 2 or not (0 < vals[0] < vals[1]):
+        raise ValueError(f"--im-range must be two numbers 0 < LO < HI, got {text!r}")
+    f = display_units(im)[1]
+    return float(vals[0] / f), float(vals[1] / f)
+
+
+@app.command(short_help="Fragility curve of a structure over a suite of records (IDA).")
+@guarded
+def fragility(
+    system: System = typer.Option("block", help="Structure (as in `rockarch oas`)."),
+    alpha: float = typer.Option(None, help="block/frame: slenderness atan(B/H) [rad]."),
+    shape: Shape = typer.Option(None, help="fourhinge/mdof: arch shape."),
+    rise_over_span: float = typer.Option(None, help="fourhinge/mdof: f/l."),
+    thickness_over_span: float = typer.Option(None, help="fourhinge/mdof: d/l."),
+    blocks: int = typer.Option(None, help="fourhinge/mdof: voussoirs."),
+    mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
+    delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
+    ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
+    restitution: float = typer.Option(None, help="Coefficient of restitution in [0, 1] "
+                                      "(default: the structure's own impact law)."),
+    p: float = typer.Option(..., "--p", help="Frequency parameter of the structure [1/s]."),
+    records: list[Path] = typer.Option(..., "--records", help="Folder of .AT2 records or "
+                                       "record files; several may follow one --records."),
+    more: list[Path] = typer.Argument(None, hidden=True),
+    units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
+    im: str = typer.Option("pga", help="Intensity measure: pga, pgv or sa."),
+    period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa)."),
+    im_range: str = typer.Option(None, help="IM range of the curve and band: LO,HI in g "
+                                 "(pga, sa) or m/s (pgv); default the records' range "
+                                 "widened by 2."),
+    ratio_max: float = typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
+                                    "`rockarch oas`); records safe up to it are censored."),
+    ratio_steps: int = typer.Option(81, help="Scan values of ap/ap,min from 1."),
+    tol: float = cc.TOL_OPT,
+    bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="Bootstrap resamples of the band "
+                                  "(0: none)."),
+    level: float = typer.Option(0.95, help="Confidence level of the band."),
+    t_free: float = cc.TFREE_OPT, g: float = cc.G_OPT,
+    plot: Path = typer.Option(None, help="Write a PNG of the curve, band and points."),
+    json_out: bool = cc.JSON_OPT,
+    progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
+    workers: int = cc.WORKERS_OPT, scheduler: str = cc.SCHEDULER_OPT,
+    dask_workers: int = cc.DASK_WORKERS_OPT, store: Path = cc.STORE_OPT,
+    no_store: bool = cc.NO_STORE_OPT,
+) -> None:
+    """Incremental dynamic analysis at one p and a lognormal fragility (maximum likelihood,
+    censored records included, bootstrap band). PGA and Sa in m/s², PGV in m/s."""
+    if im not in fr.IMS:
+        raise ValueError(f"--im must be one of {', '.join(fr.IMS)}, got {im!r}")
+    if bootstrap < 0:
+        raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
+    if not 0 < level < 1:
+        raise ValueError(f"--level must lie in (0, 1), got {level}")
+    sysobj = make_system(system.value, alpha=alpha, shape=value(shape),
+                         rise_over_span=rise_over_span,
+                         thickness_over_span=thickness_over_span, blocks=blocks,
+                         mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
+                         restitution=restitution, t_free=t_free)
+    if ratio_steps < 2:
+        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
+    ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
+    rng = im_range_si(im_range, im)
+    check_outputs((plot, "--plot", "png"))
+    suite = read_suite(list(records) + list(more or []), units=units)
+    motions = suite.motions
+    if workers is None and scheduler is None and dask_workers is None \
+            and len(motions) >= POOL_MIN_RECORDS and (os.cpu_count() or 1) > 1:
+        workers = os.cpu_count()  # records in parallel (bisection rounds are 1 sim each)
+    with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
+                    store_dir=store, no_store=no_store, n_sims=ratios.size * len(motions),
+                    echo=echo_err) as (executor, chunk_store):
+        res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
+                     period=period, ratio=ratios, tol=tol,
+                     progress=progress and sys.stderr.isatty(), executor=executor,
+                     store=chunk_store)
+    if rng is None:
+        known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
+        rng = (known.min() / 2, known.max() * 2)
+    grid = np.geomspace(rng[0], rng[1], 41)
+    try:
+        frag = fr.fit_ida(res, n_bootstrap=bootstrap, level=level, im_grid=grid)
+    except fr.TooFewCollapses as exc:  # the points are still the answer: print them
+        echo_err(f"warning: {exc}; no lognormal fit")
+        frag = fr.Fragility(res, None, {})
+    if plot is not None:
+        from rockarch.output.figures import save_figure
+        from rockarch.plot_fragility import plot_fragility
+
+        save_figure(plot_fragility(frag, rng), plot)
+    if json_out:
+        cc.print_json(frag.to_dict())
+        return
+    _print_table(frag)
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
+
+
+def _print_table(frag: fr.Fragility) -> None:
+    r, fit, unit = frag.ida, frag.fit, fr.IM_UNITS[frag.ida.im]
+    name = r.im if r.period is None else f"{r.im}(T = {r.period:g} s)"
+    typer.echo(f"fragility of {r.system} at p = {r.p:g} 1/s over {len(r.records)} records "
+               f"(IM = {name} [{unit}])")
+    typer.echo(f"{'record':<44} {'IM at collapse':>15} {'resurrections':>14}")
+    for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit, r.resurrections,
+                               strict=True):
+        txt = f"{v:.4g}" if np.isfinite(v) else f"> {lim:.4g}"
+        typer.echo(f"{name[:44]:<44} {txt:>15} {n:>14d}")
+    if fit is None:
+        return
+    typer.echo(f"lognormal (maximum likelihood, {fit.n_censored} censored): median "
+               f"{fit.median:.4g} {unit}, beta {fit.beta:.3f}")
+    ci = frag.ci
+    if ci:
+        lvl = 100 * ci["level"]
+        typer.echo(f"{lvl:g} % bootstrap interval ({ci['n']} resamples): median "
+                   f"{ci['median'][0]:.4g} … {ci['median'][1]:.4g}, beta "
+                   f"{ci['beta'][0]:.3f} … {ci['beta'][1]:.3f}")

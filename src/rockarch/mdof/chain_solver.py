@@ -1,0 +1,210 @@
+"""Exact contact solve of the chain stepper: banded Cholesky and a primal active-set QP.
+
+The per-step contact problem of a chain (docs/theory.md Eqs. (6.2)–(6.3)) is the strictly
+convex QP  min ½ΛᵀWΛ + ΛᵀU_free, Λ_n ≥ 0, with W = J·M⁻¹·Jᵀ block-tridiagonal (half-bandwidth
+``KD``). Rows come in threes per joint: the two corner (normal) rows 3k, 3k+1 and the
+no-slip row 3k+2. Reach it through :mod:`rockarch.mdof.chain_stepper`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+
+KD = 5  # half-bandwidth of W (3 rows per joint, neighbouring joints share one body)
+_MAX_PIVOTS = 200
+#: Regularisation of W (relative to its largest diagonal term): W + eps·I is positive
+#: definite, so the LCP has one solution even for a statically indeterminate (closed) arch;
+#: it lets a closed contact creep at U_n = −eps·Λ (≈ 1e-8·g·h: negligible).
+EPS_REG = 1e-8
+#: Sign tolerance of the pivoting (relative to g·h): above the solve's round-off (cond ≈ 1/EPS_REG).
+TOL_LCP = 1e-7
+
+
+@nb.njit(cache=True)
+def band_solve(n, kb, rhs, lb, out):
+    """Cholesky of the banded SPD matrix kb (lower band) into lb, then solve for rhs."""
+    for i in range(n):
+        for d in range(KD, -1, -1):
+            j = i - d
+            if j < 0:
+                continue
+            s = kb[i, d]
+            k0 = max(0, i - KD)
+            for k in range(k0, j):
+                s -= lb[i, i - k] * lb[j, j - k]
+            if d == 0:
+                if s <= 0.0:
+                    return False
+                lb[i, 0] = math.sqrt(s)
+            else:
+                lb[i, d] = s / lb[j, 0]
+    for i in range(n):
+        s = rhs[i]
+        for k in range(max(0, i - KD), i):
+            s -= lb[i, i - k] * out[k]
+        out[i] = s / lb[i, 0]
+    for i in range(n - 1, -1, -1):
+        s = out[i]
+        for k in range(i + 1, min(n, i + KD + 1)):
+            s -= lb[k, k - i] * out[k]
+        out[i] = s / lb[i, 0]
+    return True
+
+
+@nb.njit(cache=True)
+def wmul(n, wb, lam, i):
+    """(W·lam)_i from the lower band."""
+    s = wb[i, 0] * lam[i]
+    for d in range(1, KD + 1):
+        j = i - d
+        if j >= 0:
+            s += wb[i, d] * lam[j]
+        j = i + d
+        if j < n:
+            s += wb[j, d] * lam[j]
+    return s
+
+
+@nb.njit(cache=True)
+def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
+    """Exact LCP by a primal active-set method on the equivalent strictly convex QP
+    min ½ΛᵀWΛ + ΛᵀU_free,  Λ_n ≥ 0 (normal rows 3k, 3k+1), Λ_s free (no-slip rows 3k+2
+    with ``inset``; the other rows are fixed at 0).
+
+    ``free`` (warm start in, final working set out): rows not held at their bound. Starts
+    from Λ = 0 (feasible); every full step strictly lowers the objective, so it cannot
+    cycle. Returns the number of iterations (negative if it did not finish).
+    """
+    for i in range(n):
+        lam[i] = 0.0
+        if i % 3 == 2:
+            free[i] = inset[i]
+    for it in range(_MAX_PIVOTS):
+        for i in range(n):
+            for d in range(KD + 1):
+                j = i - d
+                if j < 0:
+                    kb[i, d] = 0.0
+                elif free[i] and free[j]:
+                    kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
+                else:
+                    kb[i, d] = 1.0 if d == 0 else 0.0
+            rhs[i] = -ufree[i] if free[i] else 0.0
+        if not band_solve(n, kb, rhs, lb, sol):
+            return -1
+        # largest feasible step towards the subproblem's solution
+        alpha = 1.0
+        block = -1
+        for i in range(n):
+            if free[i] and i % 3 != 2 and sol[i] < 0.0:
+                d = sol[i] - lam[i]
+                if d < 0.0:
+                    a = -lam[i] / d
+                    if a < alpha:
+                        alpha = a
+                        block = i
+        for i in range(n):
+            lam[i] += alpha * (sol[i] - lam[i])
+        if block >= 0 and sol[block] < -tol_l:
+            lam[block] = 0.0
+            free[block] = False
+            continue
+        if block >= 0:
+            for i in range(n):
+                lam[i] = sol[i]
+        # optimality: no held row wants to push (U_n ≥ 0 where Λ_n = 0)
+        worst = -tol_u
+        add = -1
+        for i in range(n):
+            if i % 3 == 2 or free[i]:
+                continue
+            u = ufree[i] + wmul(n, wb, lam, i)
+            if u < worst:
+                worst = u
+                add = i
+        if add < 0:
+            for i in range(n):
+                if i % 3 != 2 and lam[i] < 0.0:
+                    lam[i] = 0.0
+            return it + 1
+        free[add] = True
+    return -_MAX_PIVOTS
+
+
+@nb.njit(cache=True)
+def box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l):
+    """min ½ΛᵀWΛ + Λᵀq subject to lo ≤ Λ ≤ hi (banded W, eps on its diagonal) by the same
+    primal active-set method as :func:`lcp`: ``st`` (warm start in, working set out) is 0
+    for a free row, 1 held at lo, 2 held at hi; a row with lo = hi is always held. Returns
+    the number of banded solves (negative if it did not finish)."""
+    for i in range(n):
+        if lo[i] == hi[i]:
+            st[i] = 1
+        lam[i] = lo[i] if st[i] == 1 else (hi[i] if st[i] == 2 else min(max(0.0, lo[i]),
+                                                                         hi[i]))
+    for it in range(_MAX_PIVOTS):
+        for i in range(n):
+            s = -q[i]
+            for d in range(KD + 1):
+                j = i - d
+                if j < 0:
+                    kb[i, d] = 0.0
+                elif st[i] == 0 and st[j] == 0:
+                    kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
+                else:
+                    kb[i, d] = 1.0 if d == 0 else 0.0
+            if st[i] == 0:
+                for d in range(1, KD + 1):  # held rows enter the free rows' right-hand side
+                    j = i - d
+                    if j >= 0 and st[j] != 0:
+                        s -= wb[i, d] * lam[j]
+                    j = i + d
+                    if j < n and st[j] != 0:
+                        s -= wb[j, d] * lam[j]
+                rhs[i] = s
+            else:
+                rhs[i] = lam[i]
+        if not band_solve(n, kb, rhs, lb, sol):
+            return -1
+        alpha = 1.0
+        block = -1
+        side = 0
+        for i in range(n):
+            if st[i] != 0:
+                continue
+            dl = sol[i] - lam[i]
+            if sol[i] < lo[i] and dl < 0.0:
+                a = (lo[i] - lam[i]) / dl
+                if a < alpha:
+                    alpha, block, side = a, i, 1
+            elif sol[i] > hi[i] and dl > 0.0:
+                a = (hi[i] - lam[i]) / dl
+                if a < alpha:
+                    alpha, block, side = a, i, 2
+        for i in range(n):
+            lam[i] += alpha * (sol[i] - lam[i])
+        if block >= 0 and (sol[block] < lo[block] - tol_l or sol[block] > hi[block] + tol_l):
+            lam[block] = lo[block] if side == 1 else hi[block]
+            st[block] = side
+            continue
+        if block >= 0:
+            for i in range(n):
+                lam[i] = sol[i]
+        worst = tol_u
+        add = -1
+        for i in range(n):
+            if st[i] == 0 or lo[i] == hi[i]:
+                continue
+            u = q[i] + wmul(n, wb, lam, i) + eps * lam[i]
+            v = -u if st[i] == 1 else u  # held at lo: wants to go lower iff u < 0
+            if v > worst:
+                worst = v
+                add = i
+        if add < 0:
+            for i in range(n):
+                lam[i] = min(max(lam[i], lo[i]), hi[i])
+            return it + 1
+        st[add] = 0
+    return -_MAX_PIVOTS

@@ -1,0 +1,249 @@
+"""Statics of general block assemblies: the collapse acceleration ap,min by limit analysis.
+
+One linear programme over any contact graph (docs/theory.md §10, Eqs. (10.2)–(10.5)):
+unknowns are the normal force n ≥ 0 and the tangential force t at both ends (corners) of
+every joint, and the load multiplier λ; every block is in equilibrium under its weight m·g
+(down), a horizontal inertia load λ·m·g (the ground acceleration a_g = λ·g, direction ±1)
+and its contact forces; at a joint of friction coefficient μ the friction cone
+|t| ≤ μ·n is two linear constraints (exact in 2-D); μ = inf removes them (no sliding). The
+largest λ is the static collapse multiplier, ap,min = λ·g. scipy's HiGHS solves it.
+
+The dual solution is the collapse mechanism: a virtual velocity (u, v, ω) per block, from
+which the contacts that open or slide follow (:class:`Collapse`). Its equivalent block
+(Eq. (10.5)) gives the reference frequency parameter p and neutral angle δ of a general
+assembly.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linprog
+from scipy.sparse import coo_matrix
+
+from rockarch.constants import G
+
+#: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
+LAMBDA_CAP = 1e3
+
+
+@dataclass(frozen=True)
+class Collapse:
+    """The static collapse of an assembly under a horizontal ground acceleration.
+
+    Attributes
+    ----------
+    ap_min : float
+        Collapse acceleration λ·g [m/s²] (inf: no mechanism below LAMBDA_CAP·g).
+    lambda_ : float
+        Collapse multiplier λ = ap_min / g.
+    direction : int
+        +1: ground accelerating to +x (inertia loads to -x); -1: mirrored.
+    velocity : (nb, 3) array
+        Mechanism virtual velocities (u, v, ω) of every block's centroid, scaled so that the
+        largest |ω| is 1 (or the largest |(u, v)| is 1 for a purely sliding mechanism).
+    opening : (nj, 2) bool array
+        Joint corners that open in the mechanism.
+    sliding : (nj,) bool array
+        Joints that slide in the mechanism.
+    normal_force, tangential_force : (nj, 2) arrays
+        Corner forces at collapse, in units of g·(mass unit).
+    p, delta : float
+        Equivalent-block frequency parameter [1/s] and neutral angle [rad], Eq. (10.5)
+        (nan for a mechanism without rotation).
+    """
+
+    ap_min: float
+    lambda_: float
+    direction: int
+    velocity: np.ndarray
+    opening: np.ndarray
+    sliding: np.ndarray
+    normal_force: np.ndarray
+    tangential_force: np.ndarray
+    p: float
+    delta: float
+
+    @property
+    def moving(self) -> np.ndarray:
+        """(nb,) bool: the blocks that move in the mechanism."""
+        v = np.abs(self.velocity)
+        return v.max(axis=1) > 1e-6 * max(float(v.max()), 1e-300)
+
+
+def _equilibrium(mass, centroid, corners, normal, body_a, body_b, direction):
+    """A_eq (3 nb × 4 nj + 1) and b_eq of Eq. (10.2), in units of g."""
+    nb_, nj = len(mass), len(normal)
+    tang = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
+    rows, cols, vals = [], [], []
+    for k in range(nj):
+        for c in range(2):
+            pt = corners[k, c]
+            for body, sgn in ((body_b[k], 1.0), (body_a[k], -1.0)):
+                if body < 0:
+                    continue
+                r = pt - centroid[body]
+                for var, d in ((2 * k + c, normal[k]), (2 * nj + 2 * k + c, tang[k])):
+                    f = sgn * d
+                    rows += [3 * body, 3 * body + 1, 3 * body + 2]
+                    cols += [var] * 3
+                    vals += [f[0], f[1], r[0] * f[1] - r[1] * f[0]]
+    for i in range(nb_):  # sum f_x = direction·λ·m  (inertia load -direction·λ·m·g)
+        rows.append(3 * i)
+        cols.append(4 * nj)
+        vals.append(-direction * mass[i])
+    a = coo_matrix((vals, (rows, cols)), shape=(3 * nb_, 4 * nj + 1)).tocsr()
+    b = np.zeros(3 * nb_)
+    b[1::3] = mass
+    return a, b
+
+
+def _friction(mu):
+    """A_ub, b_ub of the friction cone |t| <= mu n (Eq. 10.3) for finite mu."""
+    nj = len(mu)
+    rows, cols, vals, r = [], [], [], 0
+    for k in range(nj):
+        if not math.isfinite(mu[k]):
+            continue
+        for c in range(2):
+            for s in (1.0, -1.0):
+                rows += [r, r]
+                cols += [2 * nj + 2 * k + c, 2 * k + c]
+                vals += [s, -mu[k]]
+                r += 1
+    return coo_matrix((vals, (rows, cols)), shape=(r, 4 * nj + 1)).tocsr(), np.zeros(r)
+
+
+def _not_standing(a_eq, b_eq, bounds, a_ub, b_ub, centroid, names) -> str:
+    """Who falls: the lowest moving block of the mechanism that proves gravity alone cannot
+    be carried (the duals of the least-residual equilibrium, a Farkas certificate)."""
+    from scipy.sparse import eye, hstack
+
+    n, m = a_eq.shape[1], a_eq.shape[0]
+    a2 = hstack([a_eq, eye(m), -eye(m)]).tocsr()
+    ub2 = hstack([a_ub, coo_matrix((a_ub.shape[0], 2 * m))]).tocsr() if a_ub.shape[0] else None
+    c = np.concatenate([np.zeros(n), np.ones(2 * m)])
+    bnd = list(bounds[:-1]) + [(0.0, 0.0)] + [(0.0, None)] * (2 * m)
+    res = linprog(c, A_ub=ub2, b_ub=b_ub if a_ub.shape[0] else None, A_eq=a2, b_eq=b_eq,
+                  bounds=bnd, method="highs")
+    vel = np.abs(np.asarray(res.eqlin.marginals)).reshape(-1, 3)
+    moving = np.flatnonzero(vel.max(axis=1) > 1e-6 * max(vel.max(), 1e-300))
+    if len(moving) == 0:
+        return "no equilibrium exists"
+    i = int(moving[np.argmin(centroid[moving, 1])])
+    more = f" (with {len(moving) - 1} more block(s))" if len(moving) > 1 else ""
+    return f"{names[i]} falls{more}: no equilibrium at rest"
+
+
+def _mechanism(dual, mass, inertia, centroid, corners, normal, body_a, body_b, direction):
+    vel = np.asarray(dual, dtype=float).reshape(len(mass), 3)
+    if np.sum(-direction * mass * vel[:, 0]) < 0:  # the inertia load does positive work
+        vel = -vel
+    w = np.abs(vel[:, 2]).max()
+    scale = w if w > 1e-9 * max(np.abs(vel).max(), 1e-300) else np.hypot(vel[:, 0],
+                                                                           vel[:, 1]).max()
+    vel = vel / scale if scale > 0 else vel
+    nj = len(normal)
+    tang = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
+    rel = np.zeros((nj, 2, 2))
+    for k in range(nj):
+        for c in range(2):
+            pt = corners[k, c]
+            for body, sgn in ((body_b[k], 1.0), (body_a[k], -1.0)):
+                if body >= 0:
+                    u, v, om = vel[body]
+                    r = pt - centroid[body]
+                    rel[k, c] += sgn * np.array([u - om * r[1], v + om * r[0]])
+    tol = 1e-6 * max(float(np.abs(rel).max()), 1e-300)
+    opening = np.einsum("kcd,kd->kc", rel, normal) > tol
+    slide = np.abs(np.einsum("kcd,kd->kc", rel, tang)).max(axis=1) > tol
+    return vel, opening, slide
+
+
+def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, float]:
+    """(p, delta) of the block whose rocking starts like the mechanism (Eq. 10.5).
+
+    With the mechanism coordinate θ the largest block rotation, Q = Σ m·(u, v) and
+    M* = Σ m·(u² + v²) + I·ω²: p² = g·|Q| / M*, tan δ = Q_y / Q_x (for one block: Housner's
+    p and α). nan if no block rotates.
+    """
+    u, v, om = velocity.T
+    if np.abs(om).max() < 1e-9:
+        return math.nan, math.nan
+    qx, qy = float(np.sum(mass * u)), float(np.sum(mass * v))
+    mstar = float(np.sum(mass * (u * u + v * v) + inertia * om * om))
+    return math.sqrt(g * math.hypot(qx, qy) / mstar), math.atan2(abs(qy), abs(qx))
+
+
+def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=None, *,
+                   g: float = G, direction: int | None = None, names=None) -> Collapse:
+    """The collapse of an assembly under a horizontal ground acceleration (Eqs. 10.2–10.4).
+
+    Parameters
+    ----------
+    mass, inertia : (nb,) arrays
+        Block masses and polar moments about their centroids (any consistent unit).
+    centroid : (nb, 2) array
+    corners : (nj, 2, 2) array
+        The two end points of every joint.
+    normal : (nj, 2) array
+        Unit normal of every joint, from body_a into body_b.
+    body_a, body_b : (nj,) int arrays
+        The two bodies of every joint; -1 is the ground (or a support moving with it).
+    mu : (nj,) array or None
+        Coulomb friction coefficient per joint (inf or None: no sliding).
+    direction : +1, -1 or None
+        Direction of the ground acceleration; None: the smaller of both.
+    names : list of str, optional
+        Block names for the error message of a structure that cannot stand.
+
+    Raises
+    ------
+    ValueError
+        If the assembly cannot stand under gravity alone (naming the block).
+    """
+    mass = np.asarray(mass, float)
+    nb_, nj = len(mass), len(normal)
+    mu = np.full(nj, np.inf) if mu is None else np.asarray(mu, float)
+    if direction is None:
+        both = [limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu,
+                               g=g, direction=d, names=names) for d in (1, -1)]
+        return min(both, key=lambda c: c.lambda_)
+    a_ub, b_ub = _friction(mu)
+    a_eq, b_eq = _equilibrium(mass, np.asarray(centroid, float), np.asarray(corners, float),
+                              np.asarray(normal, float), body_a, body_b, direction)
+    bounds = [(0.0, None)] * (2 * nj) + [(None, None)] * (2 * nj) + [(0.0, LAMBDA_CAP)]
+    cost = np.zeros(4 * nj + 1)
+    cost[-1] = -1.0
+    ub = (a_ub, b_ub) if a_ub.shape[0] else (None, None)
+    res = linprog(cost, A_ub=ub[0], b_ub=ub[1], A_eq=a_eq, b_eq=b_eq, bounds=bounds,
+                  method="highs")
+    if res.status == 2:
+        names = names if names is not None else [f"block {i}" for i in range(nb_)]
+        why = _not_standing(a_eq, b_eq, bounds, a_ub, b_ub, np.asarray(centroid, float),
+                            names)
+        raise ValueError(f"the structure cannot stand under gravity: {why}")
+    if res.status != 0:
+        raise ValueError(f"the collapse LP failed: {res.message}")
+    lam = float(res.x[-1])
+    vel, opening, slide = _mechanism(res.eqlin.marginals, mass, np.asarray(inertia, float),
+                                     np.asarray(centroid, float), np.asarray(corners, float),
+                                     np.asarray(normal, float), body_a, body_b, direction)
+    if lam >= LAMBDA_CAP * (1 - 1e-9):
+        lam = math.inf
+    p, delta = equivalent_block(mass, np.asarray(inertia, float), vel, g)
+    return Collapse(ap_min=lam * g, lambda_=lam, direction=direction, velocity=vel,
+                    opening=opening, sliding=slide,
+                    normal_force=res.x[:2 * nj].reshape(nj, 2),
+                    tangential_force=res.x[2 * nj:4 * nj].reshape(nj, 2), p=p, delta=delta)
+
+
+def collapse(assembly, *, mu=None, direction: int | None = None) -> Collapse:
+    """:func:`limit_analysis` of an :class:`~rockarch.mdof.assembly.Assembly` (its own
+    friction coefficients unless ``mu`` is given)."""
+    a = assembly
+    return limit_analysis(a.mass, a.inertia, a.centroid, a.corners, a.normal, a.body_a,
+                          a.body_b, a.mu if mu is None else mu, g=a.g, direction=direction,
+                          names=a.info.get("block_names"))

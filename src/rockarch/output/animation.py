@@ -1,0 +1,262 @@
+"""Animation of an MDOF simulation: the blocks, the open joints, the ground motion (GIF).
+
+The static parts (axes, labels, legend, the a_g(t) curve) are rendered once; each frame
+restores that background and draws only what moves (the block polygons, the open joints,
+the time marker, the title) on the Agg canvas, then maps the pixels onto one fixed
+256-colour palette. Frames are taken at ``fps`` per second of simulated time (at most
+``max_frames``, then spread evenly) and each is shown for the time to the next one, so the
+GIF plays in real time.
+The last frame is held and shows what its title says: the configuration at the last
+record (for a collapse: at t_overturn), with the displacements magnified by the stated
+factor when they would otherwise be too small to see.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from matplotlib.collections import PolyCollection
+from matplotlib.colors import to_rgb
+from matplotlib.lines import Line2D
+from matplotlib.patches import Polygon
+from PIL import Image
+from tqdm import tqdm
+
+from rockarch.output.figures import new_figure
+from rockarch.output.paths import atomic_write
+
+#: Joint state -> colour and legend text (state 0, closed, is not drawn).
+STATE_STYLE = {1: ("tab:red", "rotating about corner 0 (arch: intrados)"),
+               2: ("tab:orange", "rotating about corner 1 (arch: extrados)"),
+               3: ("magenta", "both corners open")}
+#: Largest displacement of the held last frame, as a fraction of the structure's size.
+FINAL_VISIBLE = 0.1
+#: How long the last frame is held [s].
+HOLD = 2.0
+DPI = 100
+
+
+@dataclass(frozen=True)
+class FramePlan:
+    """Which records become frames, how long each is shown, and the last frame's scale."""
+
+    indices: np.ndarray
+    durations_ms: np.ndarray
+    magnify: float
+    final_magnify: float
+
+
+def _nice_floor(x: float) -> float:
+    """The largest 1, 2 or 5 × 10^k not above x."""
+    k = math.floor(math.log10(x))
+    return max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= x)
+
+
+def _outlines(resp, q: np.ndarray) -> list[np.ndarray]:
+    """Block outlines for the configuration ``q`` (nb, 3)."""
+    a = resp.assembly
+    out = []
+    for ip, poly in enumerate(a.polygons):
+        j = a.body_of_polygon(ip)
+        x, y, ph = q[j]
+        c, s = math.cos(ph), math.sin(ph)
+        rel = (np.asarray(poly) - a.centroid[j]) * resp.scale
+        out.append(np.stack([x + c * rel[:, 0] - s * rel[:, 1],
+                             y + s * rel[:, 0] + c * rel[:, 1]], axis=1))
+    return out
+
+
+def _joint_segment(resp, q: np.ndarray, k: int) -> np.ndarray:
+    """Joint k's two corners in configuration q, carried by the body on the tail side of
+    its normal (the lower/left one), or by the other body for a joint on the ground."""
+    a = resp.assembly
+    corners = a.corners[k] * resp.scale
+    body = int(a.body_a[k]) if a.body_a[k] >= 0 else int(a.body_b[k])
+    if body < 0:
+        return corners
+    x, y, ph = q[body]
+    c, s = math.cos(ph), math.sin(ph)
+    rel = corners - a.centroid[body] * resp.scale
+    return np.stack([x + c * rel[:, 0] - s * rel[:, 1], y + s * rel[:, 0] + c * rel[:, 1]],
+                    axis=1)
+
+
+def _config(resp, i: int, magnify: float) -> np.ndarray:
+    q0 = resp.q[0]
+    return q0 + magnify * (resp.q[i] - q0)
+
+
+def plan_frames(resp, fps: int, max_frames: int, magnify: float) -> FramePlan:
+    """Frames at ``fps`` per simulated second (at most ``max_frames``), ending at the last
+    record (t_overturn for a collapse); the held last frame's magnification is ``magnify``
+    raised (to 1, 2 or 5 × 10^k) until its largest displacement is visible."""
+    t = resp.t
+    last = t.size - 1
+    if resp.overturned and resp.t_overturn is not None:
+        last = min(last, int(np.searchsorted(t, resp.t_overturn - 1e-12)))
+    t_end = float(t[last])
+    n = max(2, min(max_frames, int(math.floor(fps * t_end + 1e-9)) + 1, last + 1))
+    idx = np.searchsorted(t[:last + 1], np.linspace(0.0, t_end, n))
+    idx = np.unique(np.clip(idx, 0, last))
+    idx[-1] = last
+    dur = np.append(np.diff(t[idx]) * 1000.0, HOLD * 1000.0)
+    base = np.concatenate(_outlines(resp, resp.q[0]))
+    size = float(np.ptp(base, axis=0).max())
+    moved = np.concatenate(_outlines(resp, resp.q[last])) - base
+    disp = float(np.abs(moved).max())
+    final = magnify
+    if disp > 0 and disp * magnify < FINAL_VISIBLE * size:
+        final = max(magnify, _nice_floor(FINAL_VISIBLE * size / disp))
+    return FramePlan(idx, np.maximum(np.round(dur, -1), 20.0), magnify, final)
+
+
+def _title(resp, i: int, n_open: int, magnify: float, final: bool) -> str:
+    text = f"t = {resp.t[i]:.2f} s, open joints: {n_open}"
+    if final:
+        if resp.overturned:
+            text = (f"COLLAPSE at t = {resp.t_overturn:.3f} s (overturning criterion), "
+                    f"open joints: {n_open}")
+        else:
+            text += " (end, safe)"
+    if magnify != 1.0:
+        text += f", displacements ×{magnify:g}"
+    return text
+
+
+def check_options(fps: int, max_frames: int, magnify: float) -> None:
+    """Reject frame rates below 1, fewer than 2 frames, magnifications below 1 or not
+    finite (ValueError naming the ``rockarch animate`` option)."""
+    if fps < 1:
+        raise ValueError(f"--fps must be >= 1, got {fps}")
+    if max_frames < 2:
+        raise ValueError(f"--frames must be >= 2, got {max_frames}")
+    if not (math.isfinite(magnify) and magnify >= 1):
+        raise ValueError(f"--magnify must be a number >= 1, got {magnify}")
+
+
+class _Renderer:
+    """The figure of an animation: static parts drawn once, :meth:`frame` redraws only the
+    moving artists (animated=True) over the saved background and returns the pixels."""
+
+    def __init__(self, resp, plan: FramePlan) -> None:
+        self.resp = resp
+        self.fig = fig = new_figure((10, 4.1), dpi=DPI)
+        ax, axg = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
+        rest = _outlines(resp, resp.q[0])
+        self._structure_axes(ax, rest, _outlines(
+            resp, _config(resp, int(plan.indices[-1]), plan.final_magnify)))
+        self._ground_axes(axg)
+        fig.subplots_adjust(left=0.07, right=0.98, top=0.9, bottom=0.25, wspace=0.25)
+        # add_artist, not add_patch: the limits are set above, and add_patch's data-limit
+        # update walks every curve segment (the larger part of the drawing time otherwise)
+        self.patches = [ax.add_artist(Polygon(p, closed=True, fc="0.82", ec="0.25", lw=0.6,
+                                              animated=True)) for p in rest]
+        self.joint_lines = [ax.plot([], [], lw=3, solid_capstyle="round", animated=True)[0]
+                            for _ in range(resp.assembly.n_joints)]
+        self.marker = axg.axvline(0.0, color="k", lw=1, animated=True)
+        self.title = fig.suptitle("", fontsize=11, animated=True)
+        fig.canvas.draw()
+        self.background = fig.canvas.copy_from_bbox(fig.bbox)
+
+    @staticmethod
+    def _structure_axes(ax, rest: list[np.ndarray], last: list[np.ndarray]) -> None:
+        """Limits holding the rest and the last (magnified) configuration, ground line,
+        labels, the outline at rest, the legend of the joint colours."""
+        pts = np.concatenate([*rest, *last])
+        span = float(np.ptp(pts, axis=0).max())
+        lo, hi = pts.min(axis=0) - 0.15 * span, pts.max(axis=0) + 0.15 * span
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(min(lo[1], -0.05 * span), hi[1])
+        ax.set_aspect("equal")
+        ax.axhline(0.0, color="0.3", lw=1)
+        ax.set_xlabel("x [m] (frame moving with the ground)")
+        ax.set_ylabel("y [m]")
+        ax.add_collection(PolyCollection(rest, closed=True, facecolors="none",
+                                         edgecolors="0.65", linestyles="--", linewidths=0.5),
+                          autolim=False)
+        ax.legend(handles=[Line2D([], [], color=c, lw=3, label=f"joint {lab}")
+                           for c, lab in STATE_STYLE.values()]
+                  + [Line2D([], [], color="0.65", ls="--", lw=0.8, label="at rest")],
+                  loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=7,
+                  frameon=False)
+
+    def _ground_axes(self, axg) -> None:
+        mot = self.resp.ground
+        if mot is not None:
+            tt = np.linspace(0.0, max(float(self.resp.t[-1]), 1e-9), 600)
+            axg.plot(tt, np.interp(tt, mot.t, mot.a, left=0.0, right=0.0), color="tab:blue")
+        axg.set_xlabel("t [s]")
+        axg.set_ylabel("a_g [m/s²]")
+        axg.grid(alpha=0.3)
+
+    def frame(self, i: int, magnify: float, final: bool) -> np.ndarray:
+        """RGB pixels (h, w, 3) of record i."""
+        resp, canvas = self.resp, self.fig.canvas
+        canvas.restore_region(self.background)
+        q = _config(resp, i, magnify)
+        for patch, poly in zip(self.patches, _outlines(resp, q), strict=True):
+            patch.set_xy(poly)
+        n_open = 0
+        for k, line in enumerate(self.joint_lines):
+            st = int(resp.joints[i, k])
+            if st:
+                seg = _joint_segment(resp, q, k)
+                line.set_data(seg[:, 0], seg[:, 1])
+                line.set_color(STATE_STYLE[st][0])
+                n_open += 1
+            line.set_visible(bool(st))
+        self.marker.set_xdata([resp.t[i], resp.t[i]])
+        self.title.set_text(_title(resp, i, n_open, magnify, final))
+        for artist in [*self.patches, *self.joint_lines, self.marker, self.title]:
+            self.fig.draw_artist(artist)
+        return np.asarray(canvas.buffer_rgba())[..., :3].copy()
+
+
+def _palette(first: np.ndarray) -> Image.Image:
+    """One 256-colour palette for every frame: the first frame's colours plus the joint
+    colours (which it may not show yet)."""
+    swatch = np.array([[int(c * 255) for c in to_rgb(col)] for col, _ in STATE_STYLE.values()],
+                      dtype=np.uint8)
+    img = first.copy()
+    img[:swatch.shape[0], :1] = swatch[:, None, :]
+    return Image.fromarray(img).quantize(256, method=Image.Quantize.FASTOCTREE)
+
+
+def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
+            magnify: float = 1.0, progress: bool | None = None) -> Path:
+    """Write a GIF of an MDOF response (atomically).
+
+    Left: the blocks (displacements in the frame moving with the ground, optionally
+    magnified), open joints coloured by their state (legend). Right: a_g(t) with the
+    current time. Frames: :func:`plan_frames`. ``progress``: a progress bar on stderr
+    (default: when stderr is a terminal).
+    """
+    check_options(fps, max_frames, magnify)
+    plan = plan_frames(resp, fps, max_frames, magnify)
+    renderer = _Renderer(resp, plan)
+    palette = _palette(renderer.frame(0, plan.magnify, False))
+    show = sys.stderr.isatty() if progress is None else progress
+    n = plan.indices.size
+
+    def frames():
+        with tqdm(total=n, desc="frames", unit="frame", disable=not show,
+                  file=sys.stderr, leave=False) as bar:
+            for k, i in enumerate(plan.indices):
+                final = k == n - 1
+                rgb = renderer.frame(int(i), plan.final_magnify if final else plan.magnify,
+                                     final)
+                bar.update(1)
+                yield Image.fromarray(rgb).quantize(palette=palette, dither=Image.Dither.NONE)
+
+    it = frames()
+    head = next(it)
+
+    def write(tmp: Path) -> None:
+        head.save(tmp, format="GIF", save_all=True, append_images=it, loop=0,
+                  duration=[int(d) for d in plan.durations_ms])
+
+    return atomic_write(path, write)

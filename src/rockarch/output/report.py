@@ -1,0 +1,128 @@
+"""Self-contained HTML report of a design check (paper Sect. 9): figures inlined as base64
+PNG, no external resources, so it opens offline and can be archived with the project."""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+import xarray as xr
+
+from rockarch import __version__
+from rockarch.constants import G_STANDARD
+from rockarch.design import DesignResult
+from rockarch.output.arch_plots import design_arch_figure
+from rockarch.output.figures import new_figure
+from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
+from rockarch.output.paths import write_text
+
+ASSUMPTIONS = [
+    "The arch is replaced by a catenary arch carrying its own mass distribution (paper "
+    "Sect. 4 and 8). The lower-bound thickness (the thickest such catenary inside the "
+    "contour) is conservative; the equivalent thickness (same ap,min as the arch) is the "
+    "paper's Sect. 9 choice and its safety rests on the other assumptions below.",
+    "The catenary arch is replaced by a slender monolithic rigid block with the same p and "
+    "ap,min (DeJong & Dimitrakopoulos equivalence; paper Hypotheses 1–3: the block's OAS is a "
+    "safe approximation of the multi-block catenary arch's).",
+    "The slender block's OAS neglects most of the energy dissipated at impacts, which is "
+    "larger in real, thicker arches (paper Sect. 9.1).",
+    "Overturning is declared when the block's rotation reaches alpha (the mechanism its "
+    "neutral position), although the ground could still pull it back: conservative.",
+    "The site curve is read at the grid value of p on the safe side (the smaller of the two "
+    "neighbouring values); where no record overturns within the computed ratio range, the "
+    "top of the range is used (a lower bound).",
+]
+
+
+def site_figure(result: DesignResult, site_ds: xr.Dataset):
+    """Every record's OAS boundary, the envelope, the characteristic curve, the arch's point."""
+    fig = new_figure((7, 4.4))
+    ax = fig.subplots()
+    p = site_ds["p"].values
+    for k in range(site_ds.sizes["record"]):
+        ax.plot(p, site_ds["boundary"].values[k], color="0.6", lw=0.7,
+                label="records" if k == 0 else None)
+    ax.plot(p, site_ds["envelope"].values, "k-", lw=1.8, label="envelope")
+    ax.plot(p, site_ds["characteristic"].values, "k--", lw=1.2,
+            label=f"{site_ds.attrs.get('percentile', 50):g}th percentile")
+    c = result.chosen
+    ax.axvline(c.p, color="tab:red", lw=0.8, ls=":")
+    ax.plot([c.p], [result.ratio], "o", color="tab:red", ms=8,
+            label=f"arch: p = {c.p:.3f} 1/s, ap/ap,min = {result.ratio:.3f}")
+    ax.set_xlabel("frequency parameter p [1/s]")
+    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
+    ax.set_ylim(1.0, float(site_ds["ratio"].values[-1]))
+    ax.legend(fontsize=8)
+    ax.set_title(f"site OAS, slender block alpha = {site_ds.attrs.get('alpha', 0):g}",
+                 fontsize=9)
+    return fig
+
+
+def _inputs_table(result: DesignResult, site_ds: xr.Dataset, inputs: dict,
+                  site_path: str | None) -> str:
+    site_hash = ""
+    if site_path and Path(site_path).exists():
+        site_hash = hashlib.sha256(Path(site_path).read_bytes()).hexdigest()
+    p, r = site_ds["p"].values, site_ds["ratio"].values
+    return key_value_table([(k, str(v)) for k, v in inputs.items()] + [
+        ("thickness rule", result.rule), ("site curve", result.curve),
+        ("g [m/s²]", f"{result.g:g}"), ("site file", str(site_path or "")),
+        ("site file SHA-256", site_hash),
+        ("site block alpha", f"{site_ds.attrs.get('alpha')}"),
+        ("site percentile", f"{site_ds.attrs.get('percentile')}"),
+        ("site p range [1/s]", f"{p[0]:g}…{p[-1]:g}"),
+        ("site ratio range", f"{r[0]:g}…{r[-1]:g}"),
+        ("site built with rockarch", str(site_ds.attrs.get("rockarch_version")))])
+
+
+def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inputs: dict,
+                site_path: str | None = None, extra_html: str = "") -> str:
+    """The report as one HTML page; ``command`` reruns the check, ``inputs`` lists the
+    arch's parameters; ``extra_html`` (e.g. the fragility of a suite) follows the site
+    OAS."""
+    c = result.chosen
+    rep = result.replacement
+    g = result.g
+    lower = " (at least: no record overturns within the computed range)" \
+        if result.ratio_is_lower_bound else ""
+    records = table(["record", "PGA [g]", "SHA-256 of the file"], [
+        (n, f"{pga / G_STANDARD:.4f}", h) for n, pga, h in zip(
+            site_ds["record_name"].values, site_ds["record_pga"].values,
+            site_ds["record_sha256"].values, strict=True)])
+    replacements = table(
+        ["replacement", "d [m]", "d/l", "f [m]", "p [1/s]", "ap,min [m/s²]", "c1", "c2",
+         "block R [m]"],
+        [(r.rule, f"{r.thickness:.4f}", f"{r.thickness / r.arch.span:.5f}", f"{r.rise:.4f}",
+          f"{r.p:.4f}", f"{r.ap_min:.4f}", f"{r.mechanism.c1:.4f}", f"{r.mechanism.c2:.4f}",
+          f"{r.R_block:.4f}") for r in (rep.lower_bound, rep.equivalent)])
+    body = f"""<h1>Overturning design check of a masonry arch</h1>
+<p>rockarch {__version__}, {stamp()}.
+Method: paper Sect. 9 (replacement catenary arch, slender-block OAS of the site).</p>
+<div class="result">Largest safe peak ground acceleration:
+<b>{result.pga_safe:.3f} m/s² = {result.pga_safe / g:.3f} g</b><br>
+ap/ap,min = {result.ratio:.4f}{lower} read on the site's {result.curve} at
+p = {c.p:.4f} 1/s; ap,min = {c.ap_min:.4f} m/s² ({result.rule} thickness).
+Below this PGA the arch may move but does not collapse.</div>
+<h2>Arch and replacement catenary arch</h2>
+{inline_figure(design_arch_figure(result), "arch")}
+<p>Original arch: critical optimal four-hinge mechanism ap,min = {rep.original.ap_min:.4f} m/s²
+(lambda = {rep.original.lambda_:.5f}), p = {rep.original.p:.4f} 1/s,
+delta = {rep.original.delta:.5f} rad.</p>
+{replacements}
+<h2>Site OAS</h2>
+{inline_figure(site_figure(result, site_ds), "site OAS")}
+{records}
+{extra_html}
+<h2>Chain of conservative assumptions</h2>
+<ol>{''.join(f'<li>{escape(a)}</li>' for a in ASSUMPTIONS)}</ol>
+<h2>Inputs (to rerun)</h2>
+<p><code>{escape(command)}</code></p>
+{_inputs_table(result, site_ds, inputs, site_path)}"""
+    return page("rockarch design check", body)
+
+
+def write_report(result: DesignResult, site_ds: xr.Dataset, path, *, command: str,
+                 inputs: dict, site_path: str | None = None, extra_html: str = "") -> Path:
+    """Write the HTML report atomically (see :func:`report_html`)."""
+    return write_text(path, report_html(result, site_ds, command=command, inputs=inputs,
+                                        site_path=site_path, extra_html=extra_html))

@@ -1,0 +1,137 @@
+"""`rockarch fragility` (issue contract): JSON keys, pga in m/s², points named by file,
+collapse points equal to `rockarch oas` boundaries × ap,min; bad input exits 2."""
+
+import json
+import shutil
+
+import pytest
+from typer.testing import CliRunner
+
+from rockarch.cli import app
+from rockarch.records import bundled_record_path
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def full(tmp_path_factory):
+    """The two bundled El Centro components, whole (54 s each)."""
+    d = tmp_path_factory.mktemp("suite")
+    for c in (180, 270):
+        shutil.copy(bundled_record_path(c), d)
+    return d
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """Their first 12 s (the strong motion) as .AT2 files: the same checks, faster."""
+    import rockarch as ra
+    from rockarch.suite import write_at2
+
+    d = tmp_path_factory.mktemp("short")
+    for c in (180, 270):
+        m = ra.el_centro(c)
+        write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
+    return d
+
+
+@pytest.mark.slow
+def test_contract_full_records(full, tmp_path):
+    _check_contract(full, tmp_path)
+
+
+def test_contract(folder, tmp_path):
+    _check_contract(folder, tmp_path)
+
+
+def _check_contract(folder, tmp_path):
+    png = tmp_path / "f.png"
+    res = runner.invoke(app, ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2",
+                              "--records", str(folder), "--im", "pga", "--no-store",
+                              "--json", "--bootstrap", "50", "--plot", str(png)])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["im"] == "pga"
+    names = [q["record"] for q in out["points"]]
+    assert names == sorted(p.name for p in folder.iterdir())
+    assert png.stat().st_size > 1000
+    # each collapse point is the `rockarch oas` boundary at p = 2 times ap,min (m/s²)
+    rec = folder / names[0]
+    oas = runner.invoke(app, ["oas", "--system", "block", "--alpha", "0.1", "--p", "2",
+                              "--record", str(rec), "--no-store", "--json"])
+    assert oas.exit_code == 0, oas.output
+    boundary = json.loads(oas.stdout)["boundary"][0]
+    assert out["points"][0]["im_collapse"] == boundary * out["ap_min"]
+    assert all(q["resurrections"] >= 0 and not q["censored"] for q in out["points"])
+    # two records: the MLE is the closed form (mean and std of ln x)
+    import numpy as np
+
+    lx = np.log([q["im_collapse"] for q in out["points"]])
+    assert out["median"] == pytest.approx(np.exp(lx.mean()), rel=1e-12)
+    assert out["beta"] == pytest.approx(lx.std(), rel=1e-12)
+    assert set(out["ci"]) >= {"median", "beta", "level", "im", "probability_lo"}
+
+
+@pytest.mark.parametrize("extra, msg", [
+    (["--im", "sa"], "--im sa needs --period"),
+    (["--im", "pgd"], "--im must be one of"),
+    (["--im-range", "5,1"], "--im-range must be two numbers"),
+    (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
+    (["--level", "95"], "--level must lie in (0, 1)"),
+    (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
+])
+def test_bad_input_is_one_line(folder, extra, msg):
+    res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                              str(folder), "--no-store", *extra])
+    assert res.exit_code == 2
+    assert res.stderr.startswith("error: ") and msg in res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1
+
+
+def test_too_few_collapses_prints_the_points_and_no_fit(folder):
+    res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                              str(folder), "--no-store", "--ratio-max", "1.1",
+                              "--ratio-steps", "2", "--t-free", "1", "--json"])
+    assert res.exit_code == 0, res.output
+    assert res.stderr.startswith("warning: only 0 of 2 records collapse up to "
+                                 "ap/ap,min = 1.1")
+    out = json.loads(res.stdout)
+    assert out["median"] is None and out["beta"] is None and out["n_censored"] == 2
+    assert all(q["censored"] and q["im_collapse"] is None for q in out["points"])
+
+
+def test_empty_folder(tmp_path):
+    res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                              str(tmp_path), "--no-store"])
+    assert res.exit_code == 2 and "holds no record" in res.stderr
+
+
+@pytest.mark.slow
+def test_design_with_records(tmp_path):
+    import numpy as np
+
+    import rockarch as ra
+
+    for c in (180, 270):  # the first 10 s of El Centro as two-column files
+        m = ra.el_centro(c)
+        np.savetxt(tmp_path / f"elc{c}.txt", np.c_[m.t[:1000], m.a[:1000]])
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
+                              "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
+                              "--curve", "simplified", "--json", "--report",
+                              str(tmp_path / "r.html")])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    f = out["fragility"]
+    assert f["n_records"] == 2
+    assert 0 <= f["probability_at_pga"]["probability"] <= 1
+    assert f["pga_at_probability"]["probability"] == 0.1
+    assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
+    assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
+    page = (tmp_path / "r.html").read_text()
+    assert "Fragility of the replacement" in page and "--records" in page
+
+
+def test_design_needs_site_or_records(folder):
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
+                              "--thickness", "1"])
+    assert res.exit_code == 2 and "give either --site FILE or --records DIR" in res.stderr

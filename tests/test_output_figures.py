@@ -1,0 +1,89 @@
+"""Figures and HTML (rockarch.output): no global matplotlib state, the arch figure cropped to
+the arch, site legends with whole record names, one stylesheet."""
+
+import re
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pytest
+import xarray as xr
+from PIL import Image
+
+from rockarch.arch import analyse, circular
+from rockarch.output import figures, html
+from rockarch.output.arch_plots import mechanism_figure, plot_mechanism
+from rockarch.output.tables import boundary_table
+
+SRC = Path(__file__).parents[1] / "src" / "rockarch"
+
+
+def test_no_backend_switch_and_no_pyplot_in_the_package():
+    hits = [f"{p.relative_to(SRC)}:{i}" for p in SRC.rglob("*.py")
+            for i, line in enumerate(p.read_text().splitlines(), 1)
+            if re.search(r"matplotlib\.use\(|import matplotlib\.pyplot|import pyplot|plt\.",
+                         line)]
+    assert hits == []
+
+
+def test_figures_leave_the_session_backend_alone(tmp_path):
+    before = matplotlib.rcParams._get_backend_or_none()
+    ds = xr.Dataset({"overturned": (("p", "ratio"), np.array([[0, 1], [0, 0]], bool)),
+                     "boundary": ("p", np.array([1.5, np.nan]))},
+                    coords={"p": [1.0, 2.0], "ratio": [1.0, 2.0]})
+    ax = figures.plot_oas(ds)
+    figures.save_figure(ax.figure, tmp_path / "o.png")
+    assert matplotlib.rcParams._get_backend_or_none() == before
+    assert (tmp_path / "o.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def _blank_rows(img: np.ndarray) -> tuple[int, int]:
+    """Rows of pure background at the top and bottom of an RGB image."""
+    ink = (img < 250).any(axis=(1, 2))
+    rows = np.flatnonzero(ink)
+    return int(rows[0]), int(img.shape[0] - 1 - rows[-1])
+
+
+def test_arch_figure_has_no_empty_band(tmp_path):
+    """The Sect. 9 arch (README's arch_sect9.png): cropped to the drawing, the legend below
+    the x label (before: ~80 px of empty band above the title)."""
+    path = plot_mechanism(analyse(circular(10.0, 2.89, 0.35)), tmp_path / "a.png")
+    img = np.array(Image.open(path).convert("RGB"))
+    top, bottom = _blank_rows(img)
+    # bbox_inches="tight" pads 0.1 in = 12 px at 120 dpi (+ antialiased edge rows)
+    assert top <= 15 and bottom <= 15
+    fig = mechanism_figure(analyse(circular(10.0, 2.89, 0.35)))
+    fig.canvas.draw()
+    legend = fig.legends[0].get_window_extent()
+    xlabel = fig.axes[0].xaxis.label.get_window_extent()
+    assert legend.y1 <= xlabel.y0  # no overlap
+
+
+def test_site_legend_holds_whole_record_names(tmp_path):
+    long = "RSN6_IMPVALL.I_I-ELC180-hor1.AT2 (Imperial Valley-02, 5/19/1940, El Centro " \
+           "Array #9, 180)"
+    ds = xr.Dataset({"boundary": (("record", "p"), [[1.2, 1.1], [1.3, 1.4]]),
+                     "envelope": ("p", [1.2, 1.1]), "characteristic": ("p", [1.25, 1.25]),
+                     "record_name": ("record", [long, "short"])},
+                    coords={"p": [1.0, 2.0]}, attrs={"percentile": 50.0, "title": "site"})
+    fig = figures.plot_site(ds)
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert labels[0].replace("\n", " ") == long and labels[1] == "short"
+    fig.canvas.draw()
+    box = fig.axes[0].get_legend().get_window_extent()
+    saved = figures.save_figure(fig, tmp_path / "s.png")
+    assert box.width < Image.open(saved).size[0]  # the saved figure holds the legend
+
+
+def test_one_stylesheet_and_escaped_tables():
+    page = html.page("t <1>", html.table(["a&b"], [["<x>", 2]]))
+    assert page.count("<style>") == 1 and html.STYLESHEET in page
+    assert "<title>t &lt;1&gt;</title>" in page and "<td>&lt;x&gt;</td>" in page
+    assert "<th>a&amp;b</th>" in page
+
+
+@pytest.mark.parametrize("b, text", [(4.00703125, "4.0070"), (np.nan, "> 5 (none in range)")])
+def test_boundary_table_format(b, text):
+    lines = boundary_table(np.array([2.0]), np.array([b]), 5.0)
+    assert lines[0] == f"{'p [1/s]':>10}  {'boundary ap/ap,min':>20}"
+    assert lines[1] == f"{'2':>10}  {text:>20}"

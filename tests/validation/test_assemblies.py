@@ -1,0 +1,199 @@
+"""General assemblies and their statics (docs/theory.md §10): closed forms, the arch
+thrust-line LP as an independent formulation, the rocking frame of the SDOF model."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rockarch import mdof
+from rockarch import mechanism as mc
+from rockarch.arch import analyse, catenary, circular
+from rockarch.constants import G
+from rockarch.mdof import builders as bd
+from rockarch.mdof import polygons as pg
+from rockarch.mdof import statics
+from rockarch.mdof.assembly_file import assembly_from_dict
+
+# Tolerance of LP results against closed forms: HiGHS solves to ~1e-9 relative (its
+# default primal/dual feasibility tolerance 1e-7 on forces of order 1).
+LP_TOL = 1e-7
+
+
+def _rect(x0, y0, w, h):
+    return [[x0, y0], [x0 + w, y0], [x0 + w, y0 + h], [x0, y0 + h]]
+
+
+@pytest.mark.parametrize("mu", [0.1, 0.2, 0.49, 0.51, 2.0])
+def test_single_block_ap_min_is_min_mu_lambda(mu):
+    # closed form: rest below min(mu, B/H)·g (Eq. 10.4 for one block)
+    blk = bd.with_friction(mdof.single_block(0.5, 1.0), mu)
+    assert blk.ap_min == pytest.approx(min(mu, 0.5) * G, rel=LP_TOL)
+    c = statics.collapse(blk)
+    if mu < 0.5:  # the mechanism slides ...
+        assert c.sliding.all()
+    else:  # ... or rocks about the left corner (inertia to the left), the right one lifts
+        assert not c.sliding.any() and c.opening.tolist() == [[False, True]]
+
+
+def test_polygon_block_equals_column_block():
+    # the same block built from its polygon: same statics and equivalent block (Housner)
+    a = bd.from_polygons([_rect(-0.25, 0, 0.5, 1.0)])
+    b = mdof.single_block(0.5, 1.0)
+    assert a.ap_min == pytest.approx(b.ap_min, rel=LP_TOL)
+    assert a.p_ref == pytest.approx(b.p_ref, rel=1e-12)  # Eq. (10.5) = Housner's p exactly
+    assert a.delta_ref == pytest.approx(b.delta_ref, rel=1e-12)
+
+
+@pytest.mark.parametrize("make,n", [(lambda: catenary(10.0, 3.0, 0.25), 10),
+                                    (lambda: catenary(10.0, 3.0, 0.25), 20),
+                                    (lambda: circular(10.0, 5.0, 0.6), 12)])
+def test_chain_lp_agrees_with_thrust_line_lp(make, n):
+    # two formulations of the same limit analysis (corner forces vs thrust line): equal
+    arch = make()
+    a = mdof.arch_assembly(arch, n)
+    c = statics.collapse(a)
+    assert c.ap_min == pytest.approx(analyse(arch, n).ap_min, rel=1e-8)
+    opened = {(int(k), int(s)) for k, s in np.argwhere(c.opening)}
+    # the four-hinge mechanism: at each hinge the opposite corner opens (corner 0 is the
+    # intrados, so an intrados hinge opens corner 1)
+    hinges = {(h.joint, 1 if h.side == "intrados" else 0)
+              for h in analyse(arch, n, direction=c.direction).hinges}
+    assert opened == hinges
+
+
+def test_column_lp_agrees_with_critical_part():
+    col = mdof.column([(0.5, 1.0), (0.4, 1.0), (0.3, 0.8, 0.05)])
+    assert statics.collapse(col).ap_min == pytest.approx(col.ap_min, rel=LP_TOL)
+
+
+def test_trilithon_is_the_rocking_frame():
+    b, h, s, d = 0.3, 2.0, 1.0, 0.4
+    tri = bd.colonnade(2, b, h, s, d)
+    assert tri.kind == "trilithon" and tri.n_blocks == 3
+    assert tri.ap_min == pytest.approx(G * b / h, rel=LP_TOL)  # frame: g·tan(alpha)
+    gamma = (2 * b + s) * d / (2 * b * h)  # lintel mass over both columns' (unit density)
+    r = 0.5 * math.hypot(b, h)
+    frame = mc.rocking_frame(math.atan(b / h), math.sqrt(3 * G / (4 * r)), gamma, G)
+    # Eq. (10.5) with the columns' rotation as coordinate is Makris & Vassiliou's frame
+    # p² = (3g/4R)(1 + 2γ)/(1 + 3γ) exactly (rocking_frame's closed form)
+    assert tri.p_ref ** 2 == pytest.approx(3 * G / (4 * r) * (1 + 2 * gamma) / (1 + 3 * gamma),
+                                           rel=1e-9)
+    # the SDOF model's own p (paper Eq. 12, an energy-based average over [0, delta])
+    # differs from the initial-slope value by less than 0.5 % for this slender frame
+    assert tri.p_ref == pytest.approx(frame.p, rel=5e-3)
+    assert tri.delta_ref == pytest.approx(frame.delta, rel=1e-9)
+
+
+def test_colonnade_of_drums():
+    col = bd.colonnade(4, 0.4, 2.4, 1.2, 0.5, drums=3)
+    assert col.n_blocks == 4 * 3 + 1 and col.kind == "colonnade"
+    # drums of full column width under a lintel: the frame mechanism, g·B/H
+    assert col.ap_min == pytest.approx(G * 0.4 / 2.4, rel=LP_TOL)
+
+
+def test_wall_closed_forms():
+    w = bd.wall(4, 3, 0.4, 0.2)
+    # running bond: courses of 3, and 2 + 2 halves
+    assert w.n_blocks == 2 * 3 + 2 * 4 and w.kind == "wall"
+    # no sliding: the wall overturns as one block, lambda = width / height
+    assert w.ap_min == pytest.approx(G * 1.2 / 0.8, rel=LP_TOL)
+    # friction below that: a course slides on its bed joint at exactly mu·g
+    assert bd.wall(4, 3, 0.4, 0.2, mu=0.3).ap_min == pytest.approx(0.3 * G, rel=LP_TOL)
+    # joints: 4 ground faces under course 1, bed joints, head joints; all found
+    assert int(np.sum(w.body_a == -1)) == 3
+
+
+def test_bridge_geometry_and_statics():
+    arch = catenary(10.0, 3.0, 0.25)
+    alone = mdof.arch_assembly(arch, 10).ap_min
+    wide = bd.bridge(arch, 10, pier_height=3.0, pier_width=2.0)
+    narrow = bd.bridge(arch, 10, pier_height=3.0, pier_width=1.5)
+    # kinematic theorem: the arch's mechanisms on fixed piers remain mechanisms, so piers
+    # only lower ap_min; wide piers do not move (the arch's own mechanism governs)
+    assert wide.ap_min == pytest.approx(alone, rel=LP_TOL)
+    assert narrow.ap_min < alone * (1 - 1e-3)
+    assert narrow.n_blocks == 10 + 2 * 2  # two piers of round(3/1.5) = 2 blocks
+    two = bd.bridge(arch, 10, spans=2, pier_height=3.0, pier_width=1.0)
+    assert two.kind == "bridge" and two.info["abutments"] == 1
+    assert two.n_blocks == 2 * 10 + 3  # one pier of three blocks
+    # the pier on the ground and the two springings on the abutments
+    assert np.sum(two.body_a == -1) + np.sum(two.body_b == -1) == 3
+    assert 0 < two.ap_min <= alone * (1 + LP_TOL)
+    with pytest.raises(ValueError, match=r"pier 1 block 1 falls"):
+        bd.bridge(arch, 10, pier_height=3.0, pier_width=1.0)
+    with pytest.raises(ValueError, match="--pier-width must exceed"):
+        bd.bridge(arch, 10, spans=2, pier_height=3.0, pier_width=0.1)
+
+
+def test_faces_found_and_corner_touch_ignored():
+    base, top = _rect(0, 0, 1, 1), _rect(0.25, 1, 1.5, 0.5)
+    corner = _rect(1, 0, 1, 1)  # shares the whole side face x = 1 with the base
+    diag = _rect(-1, 1, 1, 0.4)  # touches the base at its corner only
+    p = [pg.convex_polygon(x) for x in (base, top, corner, diag)]
+    f = pg.shared_face(p[0], p[1], 1e-9)
+    assert np.allclose(sorted([f[0][0], f[1][0]]), [0.25, 1.0]) and np.allclose(f[2], [0, 1])
+    assert pg.shared_face(p[0], p[3], 1e-9) is None
+    assert np.allclose(pg.shared_face(p[0], p[2], 1e-9)[2], [1, 0])
+    assert pg.overlap_depth(p[0], p[2]) <= 0 < pg.overlap_depth(p[0], pg.convex_polygon(
+        _rect(0.9, 0, 1, 1)))
+
+
+@pytest.mark.parametrize("poly,msg", [
+    ([[0, 0], [2, 0], [1, 0.5], [2, 2], [0, 2]], "not convex"),
+    ([[0, 0], [2, 2], [2, 0], [0, 2]], "not convex"),  # a bow tie: edges cross
+    ([[1, 0], [1.588, 1.809], [0.049, 0.691], [1.951, 0.691], [0.412, 1.809]],
+     "self-intersecting"),  # a pentagram turns one way but winds twice
+    ([[0, 0], [1, 0], [2, 0]], "no area"),
+    ([[0, 0], [1, 0]], "at least 3"),
+])
+def test_bad_polygons(poly, msg):
+    with pytest.raises(ValueError, match=msg):
+        pg.convex_polygon(poly, "block 0")
+
+
+@pytest.mark.parametrize("polys,msg", [
+    ([_rect(0, 0, 1, 1), _rect(0.5, 0.5, 1, 1)], "block 0 and block 1 overlap"),
+    ([_rect(0, 0, 1, 1), _rect(3, 0.5, 1, 1)], "block 1 touches nothing"),
+    ([_rect(0, 0, 1, 1), _rect(0.6, 1, 1, 1)], "block 1 falls"),
+    ([_rect(0, -0.5, 1, 1)], "below the ground"),
+])
+def test_bad_assemblies(polys, msg):
+    with pytest.raises(ValueError, match=msg):
+        bd.from_polygons(polys)
+
+
+def test_json_assembly_with_contact_friction():
+    data = {"name": "two", "friction": 0.6,
+            "blocks": [{"polygon": _rect(0, 0, 1, 1), "density": 2.0, "name": "base"},
+                       {"polygon": _rect(0.25, 1, 0.5, 1)}],
+            "contacts": [{"blocks": [-1, 0]}, {"blocks": [0, 1], "friction": 0.1}]}
+    a = assembly_from_dict(data)
+    assert a.n_blocks == 2 and np.allclose(sorted(a.mu), [0.1, 0.6])
+    # the top block slides on the base first: rest below 0.1·g (its own friction)
+    assert a.ap_min == pytest.approx(0.1 * G, rel=LP_TOL)
+    assert a.mass[0] == pytest.approx(2.0) and a.mass[1] == pytest.approx(0.5)
+    # --friction replaces the file's default, not a contact's own
+    assert np.allclose(sorted(assembly_from_dict(data, mu=0.05).mu), [0.05, 0.1])
+    with pytest.raises(ValueError, match="unknown key"):
+        assembly_from_dict({**data, "colour": "red"})
+    with pytest.raises(ValueError, match="unknown key"):
+        assembly_from_dict({**data, "blocks": [{"polygon": _rect(0, 0, 1, 1), "mass": 3}]})
+    with pytest.raises(ValueError, match="friction coefficient"):
+        assembly_from_dict({**data, "friction": -1})
+
+
+def test_supports_move_with_the_ground():
+    # a block against a support: the support is the ground (body -1)
+    blk, sup = [_rect(0, 0, 0.4, 1.0)], [_rect(0.4, 0, 1, 2)]
+    a = bd.from_polygons(blk, supports=sup, mu=0.5)
+    assert set(zip(a.body_a.tolist(), a.body_b.tolist(), strict=True)) == {(-1, 0), (0, -1)}
+    # pushed towards the support it cannot move: only the other direction remains
+    assert not math.isfinite(statics.collapse(a, direction=-1).ap_min)  # inertia to +x
+    # rocking away needs its lower corner to slide up the support's face; the LP's
+    # associative friction (docs/theory.md §10, limitations) lets friction prop the corner,
+    # so its ap_min bounds the true B/H·g = 0.4 g from above
+    assert a.ap_min >= G * 0.4 * (1 - LP_TOL)
+    # without sliding its corner cannot slide up the support's face: nothing moves
+    with pytest.raises(ValueError, match="no rocking mechanism"):
+        bd.from_polygons(blk, supports=sup)
