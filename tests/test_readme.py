@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import re
 import shlex
+import subprocess
+import sys
 from pathlib import Path
 
 import click
@@ -124,3 +126,23 @@ def test_python_block_runs_and_shows_what_it_computes():
         assert re.search(rf'"{key}": {d[key]}\b', block), (key, d[key])
     assert f'"overturned": {d["overturned"]}' in block
     assert f'"max_slip": {d["max_slip"]:.2g}' in block
+
+
+def _normalised_report(text: str, out: str) -> str:
+    """A demo report without what differs between runs: its folder and the timing."""
+    text = text.replace(out, "OUT")
+    return re.sub(r"computed in \d+(\.\d+)? s", "computed in T s", text)
+
+
+@pytest.mark.slow  # ~60 s: the whole demo (make demo)
+def test_docs_demo_report_is_what_make_demo_writes(tmp_path):
+    """docs/demo/report.md (linked from the README) is what `make demo` writes now; rebuild
+    it with `.venv/bin/python examples/demo.py --out docs/demo`."""
+    root = README.parent
+    subprocess.run([sys.executable, str(root / "examples" / "demo.py"), "--out",
+                    str(tmp_path)], check=True, capture_output=True, cwd=tmp_path,
+                   timeout=900)
+    fresh = _normalised_report((tmp_path / "report.md").read_text(), str(tmp_path))
+    kept = _normalised_report((root / "docs" / "demo" / "report.md").read_text(),
+                              "docs/demo")
+    assert kept == fresh
