@@ -28,7 +28,7 @@ def test_reproduce_refuses_a_file(tmp_path):
     f = tmp_path / "x"
     f.write_text("")
     res = CliRunner().invoke(app, ["reproduce", "--out", str(f)])
-    assert res.exit_code == 2 and "not a folder" in res.stderr
+    assert res.exit_code == 2 and "not a directory" in res.stderr
 
 
 @pytest.mark.slow
