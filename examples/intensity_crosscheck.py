@@ -1,4 +1,4 @@
-"""Cross-check rockarch's Sa(T), D5-95 against eqsig and pyrotd on the bundled El Centro 180.
+"""Cross-check rockarch's Sa(T), D5-95, Arias against eqsig and pyrotd on El Centro 180.
 
 Neither library is a rockarch dependency; install them anywhere on sys.path first, e.g.::
 
@@ -33,6 +33,8 @@ def main() -> None:
         print("eqsig/ours " + " ".join(f"{r:7.4f}" for r in rec.s_a / ours))
         d = eqsig.im.calc_sig_dur(rec, start=0.05, end=0.95)
         print(f"D5-95: eqsig {d:.3f} s, rockarch {im.significant_duration(m):.3f} s")
+        ia = eqsig.im.calc_arias_intensity(rec)[-1]
+        print(f"Arias: eqsig {ia:.4f} m/s, rockarch {im.arias(m):.4f} m/s")
     except ImportError:
         print("eqsig not installed")
     try:

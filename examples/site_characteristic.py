@@ -63,24 +63,27 @@ def variants(ds):
     alpha = float(ds.attrs["alpha"])
     only = np.maximum(1.0, np.stack([charsite.rectangular_pulse_boundary(P, t) for t in ti]))
     out = {"no_impact_branch_only": charsite.log_skill(b, only)}
-    best = None
-    for c in np.geomspace(0.5, 50, 41):
-        pred = np.stack([np.maximum(1, np.minimum(charsite.rectangular_pulse_boundary(P, a),
-                                                  c * np.cos(alpha) / (P * m) ** 2))
-                         for a, m in zip(ti, tm, strict=True)])
-        sk = charsite.log_skill(b, pred)
-        if best is None or sk["dispersion"] < best[1]["dispersion"]:
-            best = (c, sk)
-    out["best_C"] = {"C": float(best[0]), **best[1]}
+    for label, t2 in (("best_C", tm), ("best_C_with_t_I", ti),
+                      ("best_C_with_Tm", ds["tm"].values)):
+        best = None
+        for c in np.geomspace(0.05, 50, 61):
+            pred = np.stack([np.maximum(1, np.minimum(
+                charsite.rectangular_pulse_boundary(P, a), c * np.cos(alpha) / (P * m) ** 2))
+                for a, m in zip(ti, t2, strict=True)])
+            sk = charsite.log_skill(b, pred)
+            if best is None or sk["dispersion"] < best[1]["dispersion"]:
+                best = (c, sk)
+        out[label] = {"C": float(best[0]), **best[1]}
     return out
 
 
 def _log_axes(ax):
-    from matplotlib.ticker import NullFormatter, ScalarFormatter
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
     ax.set_xscale("log")
     ax.set_yscale("log")
     for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
         axis.set_major_formatter(ScalarFormatter())
         axis.set_minor_formatter(NullFormatter())
 

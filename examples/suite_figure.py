@@ -14,11 +14,11 @@ import argparse
 from pathlib import Path
 
 import numpy as np
-from rockarch.plot import plt, save_figure
 
 import rockarch as ra
 from rockarch import intensity as im
 from rockarch.constants import G_STANDARD
+from rockarch.output.figures import save_figure, subplots
 from rockarch.records import el_centro
 from rockarch.velocity_pulse import baker_pulse
 
@@ -37,7 +37,7 @@ def main() -> None:
     real_motions = real.motions if real else [el_centro(180), el_centro(270)]
     real_names = real.names if real else ["El Centro 180", "El Centro 270"]
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    fig, axes = subplots(1, 3, figsize=(15, 4.2))
     # (a) a synthetic record and its Husid function
     m = synth[0].motion
     ax = axes[0]

@@ -91,3 +91,35 @@ def test_characteristic_and_skill_on_a_small_site():
         assert 0 <= sk[name]["safe"] <= 1 and sk[name]["dispersion"] >= 0
     with pytest.raises(ValueError, match="has 2 records"):
         cs.characteristic(ds, motions[:1])
+
+
+@pytest.mark.slow
+def test_site_file_holds_the_new_curves_and_design_reads_them(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from rockarch import site
+    from rockarch.cli import app
+    from rockarch.records import bundled_record_path
+    from rockarch.suite import write_at2
+
+    runner = CliRunner()
+    out = tmp_path / "s.nc"
+    for c in (180, 270):  # the first 10 s of El Centro (fast)
+        m = ra.read_record(bundled_record_path(c))
+        write_at2(tmp_path / f"elc{c}.AT2", ra.GroundMotion(m.t[:1000], m.a[:1000]))
+    res = runner.invoke(app, ["site-oas", "--records", str(tmp_path), "--p-min", "1",
+                              "--p-max", "4", "--p-steps", "4", "--ratio-steps", "11",
+                              "--t-free", "2", "--tol", "0.05", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    ds = site.load(out)
+    for name in ("normalised", "simplified", "tm", "t_impulse", "t_moment"):
+        assert name in ds
+    for curve in ("normalised", "simplified"):
+        res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                                  "5", "--thickness", "1", "--site", str(out), "--curve",
+                                  curve, "--json"])
+        assert res.exit_code == 0, res.output
+        js = json.loads(res.stdout)
+        assert js["ratio"] == site.curve_at(ds, js["replacement"]["p"], curve)[0]

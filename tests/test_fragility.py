@@ -125,6 +125,8 @@ def test_im_choices():
         fr.im_per_unit_pga(m, "pgd")
     with pytest.raises(ValueError, match="needs --period"):
         fr.im_per_unit_pga(m, "sa")
+    with pytest.raises(ValueError, match="--period is for --im sa only"):
+        fr.im_per_unit_pga(m, "pgv", 0.5)
 
 
 @pytest.mark.parametrize("im, period", [("pgv", None), ("sa", 0.5)])
@@ -150,3 +152,27 @@ def test_site_fragility_is_in_units_of_the_structures_ap_min(records):
     assert s["pga_at_probability"]["pga"] == pytest.approx(frag.fit.median)
     with pytest.raises(ValueError, match="--pga"):
         fr.design_summary(frag, pga=-1.0)
+
+
+@pytest.mark.slow
+def test_ida_of_an_mdof_arch_is_its_oas_boundary():
+    m = ra.el_centro()
+    m = ra.GroundMotion(m.t[:600], m.a[:600], "El Centro, first 6 s")
+    sys_ = ra.system("mdof", shape="circular", rise_over_span=0.5, thickness_over_span=0.15,
+                     blocks=8, t_free=2.0)
+    res = fr.ida(sys_, [m], 6.0, ratio=[1.0, 2.0, 4.0], tol=0.1)
+    ds = ra.oas(sys_, m, p=[6.0], ratio=[1.0, 2.0, 4.0], tol=0.1)
+    assert np.isfinite(res.ratio_collapse[0])
+    assert res.ratio_collapse[0] == ds["boundary"].values[0]
+
+
+def test_likelihood_gradient_matches_finite_differences():
+    from scipy.optimize import approx_fprime
+
+    lx = np.log(_sample(2.0, 0.4, 40, 4))
+    lc = np.log(np.full(6, 2.5))
+    for params in ([0.3, -1.2], [0.7, -0.9], [1.4, 0.1]):
+        value, grad = fr._neg_loglik(np.array(params), lx, lc)
+        num = approx_fprime(np.array(params), lambda q: fr._neg_loglik(q, lx, lc)[0], 1e-7)
+        # forward differences of step 1e-7 on values ~1e2: error ~1e-5 relative
+        assert grad == pytest.approx(num, rel=1e-4, abs=1e-4)

@@ -14,14 +14,37 @@ runner = CliRunner()
 
 
 @pytest.fixture(scope="module")
-def folder(tmp_path_factory):
+def full(tmp_path_factory):
+    """The two bundled El Centro components, whole (54 s each)."""
     d = tmp_path_factory.mktemp("suite")
     for c in (180, 270):
         shutil.copy(bundled_record_path(c), d)
     return d
 
 
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """Their first 12 s (the strong motion) as .AT2 files: the same checks, faster."""
+    import rockarch as ra
+    from rockarch.suite import write_at2
+
+    d = tmp_path_factory.mktemp("short")
+    for c in (180, 270):
+        m = ra.el_centro(c)
+        write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
+    return d
+
+
+@pytest.mark.slow
+def test_contract_full_records(full, tmp_path):
+    _check_contract(full, tmp_path)
+
+
 def test_contract(folder, tmp_path):
+    _check_contract(folder, tmp_path)
+
+
+def _check_contract(folder, tmp_path):
     png = tmp_path / "f.png"
     res = runner.invoke(app, ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2",
                               "--records", str(folder), "--im", "pga", "--no-store",
@@ -54,6 +77,15 @@ def test_contract(folder, tmp_path):
     (["--im", "pgd"], "--im must be one of"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
+    (["--level", "95"], "--level must lie in (0, 1)"),
+    (["--p", "0"], "p must be a finite number > 0"),
+    (["--p", "nan"], "p must be a finite number > 0"),
+    (["--alpha", "-1"], "alpha"),
+    (["--im", "sa", "--period", "-1"], "--period must be a finite number > 0"),
+    (["--im-range", "0.1,x"], "--im-range"),
+    (["--bootstrap", "-1"], "--bootstrap must be >= 0"),
+    (["--records", "/nonexistent/folder"], "no such file or folder"),
+    (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
 ])
 def test_bad_input_is_one_line(folder, extra, msg):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
@@ -63,13 +95,16 @@ def test_bad_input_is_one_line(folder, extra, msg):
     assert len(res.stderr.strip().splitlines()) == 1
 
 
-def test_too_few_collapses_is_one_line(folder):
+def test_too_few_collapses_prints_the_points_and_no_fit(folder):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
                               str(folder), "--no-store", "--ratio-max", "1.1",
-                              "--ratio-steps", "2", "--t-free", "1"])
-    assert res.exit_code == 2
-    assert "collapse up to ap/ap,min = 1.1" in res.stderr
-    assert len(res.stderr.strip().splitlines()) == 1
+                              "--ratio-steps", "2", "--t-free", "1", "--json"])
+    assert res.exit_code == 0, res.output
+    assert res.stderr.startswith("warning: only 0 of 2 records collapse up to "
+                                 "ap/ap,min = 1.1")
+    out = json.loads(res.stdout)
+    assert out["median"] is None and out["beta"] is None and out["n_censored"] == 2
+    assert all(q["censored"] and q["im_collapse"] is None for q in out["points"])
 
 
 def test_empty_folder(tmp_path):
@@ -89,7 +124,9 @@ def test_design_with_records(tmp_path):
         np.savetxt(tmp_path / f"elc{c}.txt", np.c_[m.t[:1000], m.a[:1000]])
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
                               "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
-                              "--curve", "simplified", "--json"])
+                              "--curve", "simplified", "--json", "--report",
+                              str(tmp_path / "r.html"), "--save-site",
+                              str(tmp_path / "site.nc")])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     f = out["fragility"]
@@ -98,6 +135,12 @@ def test_design_with_records(tmp_path):
     assert f["pga_at_probability"]["probability"] == 0.1
     assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
+    from rockarch import site
+
+    saved = site.load(tmp_path / "site.nc")
+    assert saved.sizes["record"] == 2 and "simplified" in saved
+    page = (tmp_path / "r.html").read_text()
+    assert "Fragility of the replacement" in page and "--records" in page
 
 
 def test_design_needs_site_or_records(folder):

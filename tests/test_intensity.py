@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+import rockarch as ra
 from rockarch import intensity as im
 from rockarch.constants import G
 from rockarch.motion import GroundMotion
@@ -158,3 +159,15 @@ def test_measures_of_el_centro_and_im_value():
 def test_bad_arguments_give_one_clear_error(call, match):
     with pytest.raises(ValueError, match=match):
         call(el_centro())
+
+
+def test_sa_of_a_square_pulse_keeps_its_jumps():
+    # square pulse of 4 knots (+a for T/2, -a for T/2) resampled for the recurrence. An
+    # oscillator 50x faster settles at +a/w² by T/2 (transient e^(-zeta w T/2) = 4e-4); the
+    # jump to -a then is a step of -2a from rest: peak a/w² (1 + 2 e^(-zeta pi/sqrt(1-z²)))
+    zeta = 0.05
+    m = ra.pulse("square", period=0.5)
+    sa = im.spectral_acceleration(m, [0.01], zeta)[0]
+    exact = 1 + 2 * math.exp(-zeta * math.pi / math.sqrt(1 - zeta**2))
+    assert m.t.size == 4
+    assert sa == pytest.approx(exact, rel=2e-3)  # transient 4e-4 x 2, jump spread 1e-4 T

@@ -4,6 +4,7 @@ temporaries (rockarch.output.paths and the commands that use it)."""
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
@@ -41,6 +42,10 @@ def test_directory_where_a_file_should_be(tmp_path):
         check_output(tmp_path / "d.nc", "--out", "netcdf")
 
 
+NO_PROC = pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux /proc")
+
+
+@NO_PROC
 def test_folder_not_writable():
     # /proc refuses new files even to root (a chmod-ed folder would not stop root)
     with pytest.raises(ValueError, match="cannot write in directory /proc"):
@@ -71,6 +76,8 @@ def test_directory_output_that_is_a_file(tmp_path):
     (tmp_path / "f").write_text("x")
     with pytest.raises(ValueError, match="--out .*: is a file, not a directory"):
         check_outputs((tmp_path / "f", "--out", "dir"))
+    with pytest.raises(ValueError, match=r"--store .*: .*/f is a file, not a directory"):
+        check_outputs((tmp_path / "f" / "sub", "--store", "dir"))
 
 
 # --- staged writing ----------------------------------------------------------------------
@@ -84,6 +91,17 @@ def test_staged_failure_leaves_nothing_and_hides_temporaries(tmp_path):
     assert _leftovers(tmp_path) == []
     msg = str(err.value)
     assert "b.png: cannot write" in msg and ".tmp" not in msg
+
+
+def test_nested_stages_report_the_final_target_once(tmp_path):
+    def fails(tmp):
+        raise OSError(28, "No space left on device", str(tmp))
+
+    with pytest.raises(ValueError) as err:
+        with staged(tmp_path / "a.nc", tmp_path / "b.png") as (_, tb):
+            atomic_write(tb, fails)  # e.g. save_figure on the staged temporary
+    assert str(err.value) == f"{tmp_path / 'b.png'}: cannot write: No space left on device"
+    assert _leftovers(tmp_path) == []
 
 
 def test_staged_success_renames_all_and_keeps_none_slots(tmp_path):
@@ -148,7 +166,7 @@ def _one_line_error(res) -> str:
     (["--out", "{d}/x.txt"], "must end in .nc"),
     (["--plot", "{d}/x.nc"], "must end in .png"),
     (["--out", "{d}/no/x.nc"], "directory does not exist"),
-    (["--out", "/proc/x.nc"], "cannot write in directory /proc"),
+    pytest.param(["--out", "/proc/x.nc"], "cannot write in directory /proc", marks=NO_PROC),
     (["--plot", "{d}"], "is a directory"),
     (["--out", "{d}/f/x.nc"], "is a file, not a directory"),
 ])

@@ -86,6 +86,8 @@ def test_apply_scale_without_csv_is_an_error(folder):
      "line 2: column 'magnitude' should be a number"),
     (" Result ID, Record Sequence Number, Scale Factor\n 1, 6, -2\n",
      "scale factor must be > 0"),
+    (" Result ID, Record Sequence Number, Year\n 1, 6, inf\n",
+     "line 2: column 'year' should be a number"),
     (" Result ID, Record Sequence Number, Scale Factor, Magnitude, Vs30\n 1, 6\n",
      "truncated row"),
 ])
@@ -146,6 +148,11 @@ def test_records_info_text(folder):
     res = runner.invoke(app, ["records", "info", str(folder)])
     assert res.exit_code == 0, res.output
     assert "El Centro Array #9" in res.stdout and "0.281" in res.stdout
+    assert "Vs30" not in res.stdout  # no csv: no metadata columns
+    shutil.copy(FIXTURE, folder / "_SearchResults.csv")
+    res = runner.invoke(app, ["records", "info", str(folder), "--apply-scale"])
+    assert res.exit_code == 0, res.output
+    assert "Vs30" in res.stdout and " 0.421 " in res.stdout  # 0.281 g × 1.5
 
 
 @pytest.mark.skipif(not SHARED.is_dir(), reason="shared record folder absent")
@@ -168,6 +175,8 @@ def test_vertical_components_are_left_out_unless_asked(folder_csv):
     assert len(suite.read_suite(folder_csv, vertical=True)) == 3
     only = suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], vertical=True)
     assert only[0].component == "270"  # the header's component (this is a copy of 270)
+    motions, hashes = site.load_records([folder_csv])  # site-oas reads the same records
+    assert len(motions) == 2 and len(set(hashes)) == 2
     with pytest.raises(ValueError, match="every record is a vertical component"):
         suite.read_suite([folder_csv / "RSN6_IMPVALL.I_I-ELCUP.AT2"], search_results=FIXTURE)
 
@@ -178,3 +187,27 @@ def test_vertical_component_from_the_at2_header(tmp_path):
     (tmp_path / "v.AT2").write_text("\n".join(text) + "\n", encoding="latin-1")
     shutil.copy(bundled_record_path(180), tmp_path)
     assert suite.read_suite(tmp_path).names == ["RSN6_IMPVALL.I_I-ELC180-hor1.AT2"]
+
+
+def test_records_info_of_a_very_short_record(tmp_path):
+    # 0.1 s: no Fourier amplitude in the Tm band and shorter than any pulse period
+    t = np.arange(0.0, 0.1001, 0.01)
+    np.savetxt(tmp_path / "short.txt", np.c_[t, 0.5 * np.sin(20 * np.pi * t)])
+    res = runner.invoke(app, ["records", "info", str(tmp_path), "--units", "g", "--json"])
+    assert res.exit_code == 0, res.output
+    r = json.loads(res.stdout)["records"][0]
+    assert r["tp"] is None and r["pulse_class"] == "-" and r["pga"] > 0
+    res = runner.invoke(app, ["records", "info", str(tmp_path), "--units", "g"])
+    assert res.exit_code == 0 and "short.txt" in res.stdout
+
+
+def test_records_info_plot(folder, tmp_path):
+    out = tmp_path / "spectra.png"
+    one = str(folder / "RSN6_IMPVALL.I_I-ELC270-hor2.AT2")
+    res = runner.invoke(app, ["records", "info", one, "--periods", "1", "--plot", str(out),
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["plot"] == str(out)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    res = runner.invoke(app, ["records", "info", one, "--plot", str(tmp_path / "no" / "x.png")])
+    assert res.exit_code == 2 and "directory does not exist" in res.stderr

@@ -29,7 +29,7 @@ from rockarch.systems import KINDS, batch, simulate, system  # noqa: E402
 
 
 def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int = 3) -> GroundMotion:
-    """A pulse of the paper's family (Fig. 14; docs/theory.md Eq. 10): one of :data:`SIGNALS`,
+    """A pulse of the paper's family (Fig. 14; docs/theory.md Eqs. 8.1–8.3): one of :data:`SIGNALS`,
     peak ``ap`` [m/s²] (1 by default: OAS and simulate scale it), period [s]."""
     return _pulse(signal, ap, period, cycles)
 
@@ -44,7 +44,7 @@ def synthetic_suite(n: int, seed: int = 0, **kw) -> Suite:
 
 def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
         progress: bool = False, executor=None, store=None):
-    """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eq. 5).
+    """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eqs. 2.1–2.2).
 
     The same computation as ``rockarch oas`` (which passes the same grids); see
     :func:`rockarch.spectra.compute_oas` for the executor and store options.

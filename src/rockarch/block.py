@@ -1,6 +1,6 @@
 """Rigid rocking block (Housner): parameters, exact equation of motion, simulation.
 
-Sign convention (physics note section 1, used everywhere in rockarch): x to the right, y up,
+Sign convention (docs/theory.md §1, used everywhere in rockarch): x to the right, y up,
 rotations positive counter-clockwise; a_g > 0 accelerates the ground to the right, so the
 inertia load pushes the block to the left. theta > 0: the block pivots on its *left* bottom
 corner. At rest it starts to rock when |a_g| > ap,min = g·tan(alpha), with
@@ -100,7 +100,7 @@ class RigidBlock:
                 np.full(2, math.tan(self.alpha)), np.full(2, self.alpha), np.array([r, r]))
 
     def theta_ddot(self, theta, a_g):
-        """Angular acceleration of Housner's exact equation (physics note section 1)."""
+        """Angular acceleration of Housner's exact equation (docs/theory.md Eq. 1.4)."""
         theta = np.asarray(theta, dtype=float)
         s = np.where(theta >= 0.0, 1.0, -1.0)
         x = s * self.alpha - theta
@@ -133,7 +133,7 @@ def _check_settings(t_free: float, h_factor: float, eps_rest: float) -> None:
 def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = T_FREE,
              theta0: float = 0.0, theta_dot0: float = 0.0, h_factor: float = H_FACTOR,
              eps_rest: float = EPS_REST) -> BlockResponse:
-    """Simulate the block on the ground motion (exact Housner equation, physics note §1).
+    """Simulate the block on the ground motion (Housner, docs/theory.md Eqs. 1.4–1.6).
 
     The motion is used as given (m/s²); free rocking continues ``t_free`` seconds after it
     ends, or until the block rests. ``motion=None`` is free rocking from (theta0,
@@ -167,7 +167,7 @@ def history_capacity(n_knots: int, duration: float, p: float, h_factor: float) -
     """Samples a recorded SDOF history is expected to need (one per RK4 step of at most
     h_factor/p and per knot, +10 % and 1024 for events), capped at
     :func:`rockarch.limits.max_samples` before anything is allocated (docs/theory.md
-    Eq. (8.1)); a longer history is decimated, the verdict is unchanged."""
+    Eq. (8.6)); a longer history is decimated, the verdict is unchanged."""
     need = n_knots + duration * p / h_factor * 1.1 + 1024
     return int(min(need, limits.max_samples()))
 
@@ -180,7 +180,7 @@ def simulate_batch(block: RigidBlock, motion: GroundMotion, p, ratio, *,
 
     ``block.p`` is ignored (each run has its own p); ``p`` and ``ratio`` broadcast. The
     motion's *shape* is used: normalised to unit peak and scaled so that its peak |a_g| is
-    ratio·g·tan(alpha) (the OAS axes, docs/theory.md Eq. 4); with the exact equation g
+    ratio·g·tan(alpha) (the OAS axes, docs/theory.md Eq. 2.1); with the exact equation g
     drops out.
     """
     _check_settings(t_free, h_factor, eps_rest)

@@ -6,10 +6,10 @@ symmetric arch side − is the mirror image of side + with the mirrored coordina
 tables, mirrored response); otherwise it is found by the limit analysis with the opposite
 load and its coordinate is the rotation of its own left part. On each
 side the tables of A(u), A'(u), V'(u) and the driving moment Q(u) come from the exact
-kinematics of :mod:`rockarch.arch.fourhinge` (physics note sections 3 and 5); the motion
+kinematics of :mod:`rockarch.arch.fourhinge` (docs/theory.md §3 and §5); the motion
 itself is integrated by :mod:`rockarch.mechanism`.
 
-Impact law (physics note section 5): when u returns to 0 the closing mechanism's velocity
+Impact law (docs/theory.md §5): when u returns to 0 the closing mechanism's velocity
 field J_old (every voussoir's velocity and spin per unit rate of u) is projected onto the
 opening mechanism's J_new in the kinetic-energy metric: u_new' = e·|u_old'| with
 e = −(J_newᵀ M J_old)/(J_newᵀ M J_new), summed over all voussoirs (those outside the hinges
@@ -53,7 +53,7 @@ def velocity_field(res: ArchMechanism) -> tuple[np.ndarray, np.ndarray]:
 
 
 def impact_coefficient(closing: ArchMechanism, opening: ArchMechanism) -> float:
-    """e = −(J_newᵀ M J_old)/(J_newᵀ M J_new) (physics note section 5), at least 0.
+    """e = −(J_newᵀ M J_old)/(J_newᵀ M J_new) (docs/theory.md Eq. 5.3), at least 0.
 
     e is expressed in the two sides' own coordinates (the rotation of each mechanism's left
     part), so it may exceed 1 when the new coordinate turns faster for the same motion; the
@@ -86,7 +86,7 @@ def _is_symmetric(res: ArchMechanism, rtol: float = 1e-9) -> bool:
 
 def mirror_impact_coefficient(res: ArchMechanism) -> float:
     """e for a symmetric arch: the opening mechanism is the mirror image of the closing one,
-    with the mirrored coordinate: J_new(k) = mirror of J_old(N−1−k) (physics note §5)."""
+    with the mirrored coordinate: J_new(k) = mirror of J_old(N−1−k) (docs/theory.md §5)."""
     vs = res.thrust.voussoirs
     v1, w1 = velocity_field(res)
     v2 = np.column_stack([-v1[::-1, 0], v1[::-1, 1]])

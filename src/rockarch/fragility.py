@@ -92,12 +92,10 @@ def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) 
     1 for ``pga``; PGV/PGA [s] for ``pgv``; Sa(period)/PGA for ``sa`` (5 % damping)."""
     if im not in IMS:
         raise ValueError(f"unknown intensity measure {im!r}: choose one of {', '.join(IMS)}")
-    if im == "pga":
-        if period is not None:
-            raise ValueError("--period is for --im sa only")
-        return 1.0
-    if im == "pgv" and period is not None:
+    if im != "sa" and period is not None:
         raise ValueError("--period is for --im sa only")
+    if im == "pga":
+        return 1.0
     if im == "sa" and period is None:
         raise ValueError("--im sa needs --period T (seconds)")
     if im == "sa" and not (math.isfinite(period) and period > 0):
@@ -256,15 +254,25 @@ class LognormalFit:
         return self.median * np.exp(self.beta * norm.ppf(q))
 
 
-def _neg_loglik(params, lx, lc):
-    from scipy.stats import norm
+_LOG_SQRT_2PI = 0.5 * math.log(2 * math.pi)
 
-    mu, log_beta = params
+
+def _neg_loglik(params, lx, lc):
+    """−ln L of Eq. (11.31) without the constant Σ ln x_i, and its gradient in
+    (μ = ln θ, s = ln β): with z = (ln x − μ)/β and the hazard h(z) = φ(z)/(1 − Φ(z)),
+    ∂/∂μ = −(Σ z_i + Σ h(z_j))/β and ∂/∂s = n − Σ z_i² − Σ z_j h(z_j)."""
+    from scipy.special import log_ndtr
+
+    mu, log_beta = float(params[0]), float(params[1])
     beta = math.exp(log_beta)
     z = (lx - mu) / beta
     zc = (lc - mu) / beta
-    # the density of ln x is φ(z)/β; the Jacobian 1/x does not depend on (θ, β)
-    return -(norm.logpdf(z).sum() - lx.size * log_beta + norm.logsf(zc).sum())
+    log_sf = log_ndtr(-zc)
+    value = float(0.5 * z @ z + lx.size * (_LOG_SQRT_2PI + log_beta) - log_sf.sum())
+    hazard = np.exp(-0.5 * zc * zc - _LOG_SQRT_2PI - log_sf)
+    grad = np.array([-(z.sum() + hazard.sum()) / beta,
+                     lx.size - z @ z - zc @ hazard])
+    return value, grad
 
 
 def fit_lognormal(collapse, censored_at=()) -> LognormalFit:
@@ -277,7 +285,7 @@ def fit_lognormal(collapse, censored_at=()) -> LognormalFit:
 
     Without censored records the estimate is closed form (mean and standard deviation,
     ddof 0, of ln x); with them the likelihood Eq. (11.31) is maximised numerically
-    (scipy.optimize, from the closed-form start).
+    (scipy.optimize BFGS with the analytic gradient, from the closed-form start).
     """
     lx = np.log(_positive_values("collapse intensities", collapse))
     lc = np.log(_positive_values("censoring intensities", censored_at))
@@ -291,13 +299,12 @@ def fit_lognormal(collapse, censored_at=()) -> LognormalFit:
     else:
         from scipy.optimize import minimize
 
-        res = minimize(_neg_loglik, [mu0, math.log(beta0)], args=(lx, lc),
-                       method="Nelder-Mead",
-                       options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
+        res = minimize(_neg_loglik, [mu0, math.log(beta0)], args=(lx, lc), jac=True,
+                       method="BFGS", options={"gtol": 1e-10, "maxiter": 500})
         mu, beta = float(res.x[0]), math.exp(float(res.x[1]))
     return LognormalFit(median=math.exp(mu), beta=beta, n_collapsed=int(lx.size),
                         n_censored=int(lc.size),
-                        loglik=-_neg_loglik([mu, math.log(beta)], lx, lc)
+                        loglik=-_neg_loglik([mu, math.log(beta)], lx, lc)[0]
                         - float(lx.sum()))
 
 
@@ -355,15 +362,21 @@ def bootstrap(collapse, censored_at=(), *, n: int = N_BOOTSTRAP, level: float = 
 # --------------------------------------------------------------------------- together
 
 
+class TooFewCollapses(ValueError):
+    """Fewer than two different collapse points: no lognormal can be fitted."""
+
+
+
 @dataclass(frozen=True)
 class Fragility:
-    """IDA, its lognormal fit and the bootstrap band (what ``rockarch fragility`` prints)."""
+    """IDA, its lognormal fit and the bootstrap band (what ``rockarch fragility`` prints);
+    ``fit`` is None when fewer than two records collapse (:class:`TooFewCollapses`)."""
 
     ida: IDAResult
-    fit: LognormalFit
+    fit: LognormalFit | None
     ci: dict = field(default_factory=dict)
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         """The CLI's JSON: ``im``, ``median``, ``beta``, ``points`` and ``ci``."""
         r = self.ida
         points = [{"record": name, "im_collapse": (float(v) if math.isfinite(v) else None),
@@ -371,9 +384,11 @@ class Fragility:
                    "im_limit": float(lim), "resurrections": int(n)}
                   for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit,
                                              r.resurrections, strict=True)]
-        out = {"im": r.im, "units": IM_UNITS[r.im], "median": self.fit.median,
-               "beta": self.fit.beta, "n_records": len(r.records),
-               "n_collapsed": self.fit.n_collapsed, "n_censored": self.fit.n_censored,
+        fit = self.fit
+        out = {"im": r.im, "units": IM_UNITS[r.im],
+               "median": None if fit is None else fit.median,
+               "beta": None if fit is None else fit.beta, "n_records": len(r.records),
+               "n_collapsed": int((~r.censored).sum()), "n_censored": int(r.censored.sum()),
                "system": r.system, "p": r.p, "ap_min": r.ap_min, "points": points,
                "ci": self.ci}
         if r.period is not None:
@@ -387,7 +402,7 @@ def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float =
     x = result.im_collapse[~result.censored]
     c = result.im_limit[result.censored]
     if np.unique(x).size < 2:
-        raise ValueError(f"only {x.size} of {len(result.records)} records collapse up to "
+        raise TooFewCollapses(f"only {x.size} of {len(result.records)} records collapse up to "
                          f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least two "
                          "different collapse points (raise the scan limit, e.g. "
                          "--ratio-max 10)")

@@ -2,8 +2,8 @@
 duration D5–95, mean period Tm and 5 %-damped pseudo-spectral acceleration Sa(T).
 
 A :class:`rockarch.motion.GroundMotion` is piecewise linear between its knots, and every
-measure here is computed for that function: velocity and Arias intensity are exact
-integrals of it (docs/theory.md Eqs. (11.1)–(11.3)), Sa(T) uses the exact recurrence of a
+measure here is computed for that function: velocity, displacement and Arias intensity
+are exact integrals of it (docs/theory.md Eqs. (11.1)–(11.5)), Sa(T) uses the exact recurrence of a
 linear oscillator under piecewise-linear excitation (Nigam & Jennings 1969; Eq. (11.6)).
 Why not eqsig or pyrotd: docs/sites.md, "Intensity measures".
 
@@ -32,8 +32,9 @@ PERIODS = (0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
 POINTS_PER_PERIOD = 150
 #: Frequency band of the mean period Tm [Hz] (Rathje et al. 1998, 2004).
 TM_BAND = (0.25, 20.0)
-#: Largest number of samples a non-uniformly sampled motion is resampled to.
+#: Largest and smallest number of samples a non-uniformly sampled motion is resampled to.
 MAX_SAMPLES = 2_000_000
+MIN_SAMPLES = 4000
 #: Intensity measures proportional to the scale factor of the motion (used by IDA).
 LINEAR_IMS = ("pga", "pgv", "pgd", "sa")
 
@@ -135,14 +136,17 @@ def significant_duration(motion: GroundMotion, lo: float = 0.05, hi: float = 0.9
 
 def uniform_samples(motion: GroundMotion) -> tuple[float, np.ndarray]:
     """``(dt, a)`` on a uniform grid: the knots themselves when they are uniform (records),
-    else the motion resampled at its smallest knot spacing (pulses; a jump is then spread
-    over one step)."""
+    else the motion resampled at its smallest knot spacing, or finer so that it has at
+    least :data:`MIN_SAMPLES` samples (pulses; a jump is then spread over one step)."""
     t, a, h = _steps(motion)
     dt = (t[-1] - t[0]) / (t.size - 1)
     if np.all(np.abs(h - dt) <= 1e-6 * dt):
         return float(dt), np.asarray(a, dtype=float)
     pos = h[h > 0.0]
-    step = max(float(pos.min()), (t[-1] - t[0]) / MAX_SAMPLES)
+    # at least MIN_SAMPLES over the motion: a pulse of few knots (a square pulse has 4)
+    # keeps its shape, a jump is spread over a small fraction of it
+    step = max(min(float(pos.min()), (t[-1] - t[0]) / MIN_SAMPLES),
+               (t[-1] - t[0]) / MAX_SAMPLES)
     n = int(math.ceil((t[-1] - t[0]) / step)) + 1
     grid = t[0] + np.arange(n) * ((t[-1] - t[0]) / (n - 1))
     return float(grid[1] - grid[0]), motion(grid)
@@ -266,12 +270,17 @@ class IntensityMeasures:
 
 def measures(motion: GroundMotion, periods: Sequence[float] = PERIODS,
              damping: float = DAMPING, g: float = G) -> IntensityMeasures:
-    """Every intensity measure of ``motion`` (Eqs. (11.1)–(11.7))."""
+    """Every intensity measure of ``motion`` (Eqs. (11.1)–(11.7)); ``tm`` is NaN where no
+    Fourier amplitude lies in its band (a constant or very short motion)."""
     per = _check_periods(periods)
     sa = spectral_acceleration(motion, per, damping)
+    try:
+        tm = mean_period(motion)
+    except ValueError:  # no Fourier amplitude in the band (a constant or very short motion)
+        tm = math.nan
     return IntensityMeasures(pga=pga(motion), pgv=pgv(motion), pgd=pgd(motion),
                              arias=arias(motion, g), d5_95=significant_duration(motion),
-                             tm=mean_period(motion), periods=tuple(float(x) for x in per),
+                             tm=tm, periods=tuple(float(x) for x in per),
                              sa=tuple(float(x) for x in sa), damping=float(damping))
 
 

@@ -1,10 +1,10 @@
-"""Single-degree-of-freedom (SDOF) rocking mechanisms in motion (physics note sections 3, 5).
+"""Single-degree-of-freedom (SDOF) rocking mechanisms in motion (docs/theory.md §3, §5).
 
 A mechanism has two sides: side + opens for a positive ground acceleration (a_g > 0, inertia
 load to the left), side − is the mechanism that forms for a_g < 0 (for a symmetric structure
 the mirror image). On each side q ≥ 0 is its opening coordinate and Lagrange's equation
 
-    A(q) q'' + ½ A'(q) q'² = −V'(q) + s·a_g·Q(q)                (physics note section 3)
+    A(q) q'' + ½ A'(q) q'² = −V'(q) + s·a_g·Q(q)                (docs/theory.md Eq. 3.1)
 
 holds, with A the generalised inertia, V the potential of gravity and Q the generalised force
 per unit ground acceleration (Bv = V'(0), Bh = Q(0), ap,min = g·Bv/Bh, delta: V'(delta) = 0,
@@ -14,7 +14,7 @@ the time scaled by p/p_ref (the kernel does this), so an OAS sweeps p by scaling
 
 When q returns to 0 the mechanism of the other side takes over with an impact that projects
 the velocity field onto the new mechanism in the kinetic-energy metric,
-q_new' = e·|q_old'| with e = −(J_newᵀ M J_old)/(J_newᵀ M J_new) (physics note section 5; for
+q_new' = e·|q_old'| with e = −(J_newᵀ M J_old)/(J_newᵀ M J_new) (docs/theory.md §5; for
 a rectangular block this is Housner's r = 1 − 1.5 sin²alpha). A user value overrides it.
 Collapse: q reaches delta (the neutral position; the criterion used for the block).
 
@@ -46,7 +46,7 @@ TABLE_INTERVALS = 4000
 
 @dataclass(frozen=True)
 class MechanismSide:
-    """One side of an SDOF mechanism at the reference size (physics note section 3).
+    """One side of an SDOF mechanism at the reference size (docs/theory.md §3).
 
     Attributes
     ----------
@@ -80,7 +80,7 @@ class MechanismSide:
     @property
     def ap_min(self) -> float:
         """Bv/Bh [m/s²] (Bv includes g, Bh is per unit ground acceleration): below it this
-        side does not open (physics note section 3)."""
+        side does not open (docs/theory.md §3)."""
         return self.Bv / self.Bh
 
     def p(self) -> float:
@@ -107,7 +107,7 @@ def tabulate(delta: float, A: Callable, dA: Callable, dV: Callable, Q: Callable,
 
 @dataclass(frozen=True)
 class SDOFMechanism:
-    """An SDOF rocking mechanism: its two sides at a reference size (physics note §3, §5).
+    """An SDOF rocking mechanism: its two sides at a reference size (docs/theory.md §3, §5).
 
     Attributes
     ----------
@@ -180,7 +180,7 @@ class SDOFMechanism:
 
 def from_block(p: float, alpha: float, g: float = G, restitution: float | None = None
                ) -> SDOFMechanism:
-    """Housner's rectangular block as a tabulated mechanism (physics note section 1).
+    """Housner's rectangular block as a tabulated mechanism (docs/theory.md §1).
 
     Per unit mass and R = 3g/(4p²): A = (4/3)R², V' = gR·sin(alpha − q),
     Q = R·cos(alpha − q), delta = alpha, e = 1 − 1.5 sin²alpha. Reproduces
@@ -200,7 +200,7 @@ def generic(p: float, delta: float, ap_min: float, g: float = G,
             restitution: float | None = None) -> SDOFMechanism:
     """Any mechanism given only (p, delta, ap,min): the dimensionless equivalence form.
 
-    DeJong & Dimitrakopoulos (paper ref. [13]; physics note §1, §3): for slender mechanisms
+    DeJong & Dimitrakopoulos (paper ref. [13]; docs/theory.md §1, §3): for slender mechanisms
     and small q, phi = q/delta obeys phi'' = p²·(phi − 1 + s·a_g/ap,min) on each side. The
     impact coefficient defaults to Housner's value for a block with alpha = delta.
     """
@@ -273,7 +273,7 @@ def simulate(mech: SDOFMechanism, motion: GroundMotion | None, *, p: float | Non
              t_free: float = T_FREE, u0: float = 0.0, u_dot0: float = 0.0,
              h_factor: float = H_FACTOR, eps_rest: float = EPS_REST) -> MechanismResponse:
     """Simulate the mechanism (at the size whose frequency parameter is ``p``; default: the
-    reference size) on the ground motion [m/s²] (physics note section 3)."""
+    reference size) on the ground motion [m/s²] (docs/theory.md §3)."""
     _settings(t_free, h_factor, eps_rest)
     p = mech.p if p is None else frequency("p", p)
     model, prm, tab, amin, level, e = mech.kernel_args()
@@ -301,7 +301,7 @@ def simulate_batch(mech: SDOFMechanism, motion: GroundMotion, p, ratio, *,
                    t_free: float = T_FREE, h_factor: float = H_FACTOR,
                    eps_rest: float = EPS_REST) -> Batch:
     """Many (p, ratio) pairs in parallel: the motion's shape scaled to a peak of
-    ratio·ap,min, the mechanism scaled to frequency parameter p (docs/theory.md Eq. 4)."""
+    ratio·ap,min, the mechanism scaled to frequency parameter p (docs/theory.md Eq. 2.1)."""
     _settings(t_free, h_factor, eps_rest)
     unit = motion.normalized()
     tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)

@@ -6,6 +6,7 @@ import numpy as np
 
 from rockarch.constants import G_STANDARD
 from rockarch.fragility import Fragility
+from rockarch.output.figures import subplots
 
 #: Plot units of each intensity measure: (label, factor from SI).
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
@@ -23,11 +24,6 @@ def plot_fragility(frag: Fragility, im_range=None):
     widened by 2 on each side), the bootstrap band if computed, the collapse points as an
     empirical distribution (plotting positions (i − 0.5)/n) and the censored records at
     their scan limit. Returns the figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     r, fit, ci = frag.ida, frag.fit, frag.ci
     label, f = display_units(r.im)
     x = r.im_collapse
@@ -35,13 +31,14 @@ def plot_fragility(frag: Fragility, im_range=None):
         known = np.concatenate([x[np.isfinite(x)], r.im_limit])
         im_range = (known.min() / 2, known.max() * 2)
     grid = np.geomspace(im_range[0], im_range[1], 300)
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = subplots(figsize=(6.4, 4.6))
     if ci.get("im"):
         ax.fill_between(np.asarray(ci["im"]) * f, ci["probability_lo"],
                         ci["probability_hi"], color="#6a9fd4", alpha=0.3, lw=0,
                         label=f"{100 * ci['level']:g} % bootstrap band")
-    ax.plot(grid * f, fit.probability(grid), "k-",
-            label=f"lognormal θ = {fit.median * f:.3g}, β = {fit.beta:.2f}")
+    if fit is not None:
+        ax.plot(grid * f, fit.probability(grid), "k-",
+                label=f"lognormal θ = {fit.median * f:.3g}, β = {fit.beta:.2f}")
     n = x.size
     order = np.sort(x[np.isfinite(x)])
     ax.plot(order * f, (np.arange(1, order.size + 1) - 0.5) / n, "o", ms=4, color="C3",
@@ -50,7 +47,12 @@ def plot_fragility(frag: Fragility, im_range=None):
     if cens.size:
         ax.plot(cens * f, np.full(cens.size, 1.0), "^", ms=5, color="0.4", mfc="none",
                 label=f"censored: safe up to scan limit ({cens.size})")
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
     ax.set_xscale("log")
+    ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlim(grid[0] * f, grid[-1] * f)
     ax.set_ylim(-0.02, 1.05)
     ax.set_xlabel(label if r.im != "sa" else f"Sa(T = {r.period:g} s) [g]")
@@ -59,3 +61,23 @@ def plot_fragility(frag: Fragility, im_range=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
     return fig
+
+
+def fragility_html(frag: Fragility, summary: dict) -> str:
+    """An HTML section (figure inlined as base64 PNG) of the replacement's fragility for the
+    design report: the curve with its band and points, θ, β and the probabilities of
+    :func:`rockarch.fragility.design_summary`."""
+    from rockarch.output.html import inline_figure, key_value_table
+
+    rows = [("median PGA θ [m/s²]", f"{summary['median']:.3f}"),
+            ("β", f"{summary['beta']:.3f}"),
+            ("records (censored)", f"{summary['n_records']} ({summary['n_censored']})")]
+    for key in ("probability_at_pga", "pga_at_probability"):
+        if key in summary:
+            d = summary[key]
+            rows.append((f"P(collapse) = {d['probability']:.3g} at PGA [m/s²]",
+                         f"{d['pga']:.3f}"))
+    return ("<h2>Fragility of the replacement (IDA over the records)</h2>\n"
+            f"{inline_figure(plot_fragility(frag), 'fragility')}\n"
+            f"{key_value_table(rows)}\n<p>Lognormal fit by maximum likelihood (records "
+            "that do not collapse within the scan are censored), docs/theory.md §11.3.</p>")

@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch._validate import P_MAX
+
 
 @dataclass(frozen=True, kw_only=True)
 class Response:
@@ -93,6 +95,8 @@ def run_batch(p, ratio, run: Callable[[np.ndarray, np.ndarray], tuple], *,
     rf = np.ascontiguousarray(r_arr.ravel())
     if pf.size and not (np.all(np.isfinite(pf)) and np.all(pf > 0)):
         raise ValueError("p must be a finite number > 0 for every run")
+    if pf.size and np.max(pf) > P_MAX:
+        raise ValueError(f"p must lie in (0, {P_MAX:g}] 1/s, got {np.max(pf):g}")
     if rf.size and not (np.all(np.isfinite(rf)) and np.all(rf >= 0)):
         raise ValueError("ratio ap/ap,min must be finite and >= 0")
     perm = np.random.default_rng(0).permutation(pf.size)

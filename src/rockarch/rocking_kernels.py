@@ -6,9 +6,9 @@ coordinate ``theta`` is signed: on side s = sign(theta) the system is the mechan
 opens for s·a_g > 0 (for the block: pivot on the left corner for s = +1), with
 q = s·theta ≥ 0 its opening coordinate. Two models give theta'':
 
-* ``MODEL_BLOCK`` — Housner's exact equation (physics note section 1)
+* ``MODEL_BLOCK`` — Housner's exact equation (docs/theory.md §1)
   theta'' = −p² [sin(s·alpha − theta) − (a_g/g) cos(s·alpha − theta)];
-* ``MODEL_TABLE`` — Lagrange's equation of any SDOF mechanism (physics note section 3),
+* ``MODEL_TABLE`` — Lagrange's equation of any SDOF mechanism (docs/theory.md §3),
   A(q) q'' + ½ A'(q) q'² = −V'(q) + s·a_g·Q(q), written as
   q'' = k²g [−Wv(q) + s (a_g/g) Wh(q)] − ½ D(q) q'² with Wv = V'/(gA), Wh = Q/A,
   D = A'/A tabulated (linear interpolation) for each side at a reference size, and
@@ -328,7 +328,7 @@ def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h
     decimated below that limit; at the limit the history is decimated (the verdict is the
     same). Returns (status, t_collapse, max_ratio, t_end, t, theta, theta', impact_times,
     stride); raises ValueError, before any work, if the run may need more than
-    :func:`rockarch.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.2))."""
+    :func:`rockarch.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.5))."""
     limit = limits.max_samples()
     # known before the work: at most one RK4 step per knot and per h_factor/p seconds
     need = tk.shape[0] + (tk[-1] - tk[0] + t_free) * p / h_factor

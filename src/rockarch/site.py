@@ -22,7 +22,6 @@ import xarray as xr
 from rockarch import __version__, spectra, systems
 from rockarch.constants import G_STANDARD, OAS_TOL
 from rockarch.motion import GroundMotion
-from rockarch.records import read_record
 
 KIND = "rockarch-site-oas"
 FORMAT_VERSION = 1
@@ -41,10 +40,14 @@ def record_paths(paths) -> list[Path]:
 
 
 def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], list[str]]:
-    """Read the records and their file hashes; reject implausible PGAs (wrong units)."""
+    """Read the records as a suite (:func:`rockarch.suite.read_suite`: the same folders and
+    vertical components left out as every ``--records``) and their file hashes; reject
+    implausible PGAs (wrong units)."""
+    from rockarch.suite import read_suite
+
     motions, hashes = [], []
-    for path in record_paths(paths):
-        m = read_record(path, units=units)
+    for rec in read_suite(paths, units=units):
+        path, m = Path(rec.path), rec.motion
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
             raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "

@@ -206,7 +206,7 @@ def _number(path, line: int, col: str, text: str, kind=float):
         return None
     try:
         v = kind(float(s)) if kind is int else kind(s)
-    except ValueError:
+    except (ValueError, OverflowError):  # OverflowError: int(inf)
         raise ValueError(f"{path}: line {line}: column {col!r} should be a number, found "
                          f"{s!r}") from None
     if isinstance(v, float) and not math.isfinite(v):
@@ -417,7 +417,11 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
     for rec in suite:
         d = rec.metadata()
         d.update(intensity.measures(rec.motion, per, zeta).to_dict())
-        pulse = baker_pulse(rec.motion).to_dict()
+        try:
+            pulse = baker_pulse(rec.motion).to_dict()
+        except ValueError:  # a record shorter than the shortest pulse period
+            pulse = {"pulse_indicator": None, "tp": None, "pulse_like": None,
+                     "classification": "-"}
         d.update(pulse_indicator=pulse["pulse_indicator"], tp=pulse["tp"],
                  pulse_like=pulse["pulse_like"], pulse_class=pulse["classification"])
         out.append(d)
@@ -443,6 +447,7 @@ def write_at2(path: str | Path, motion: GroundMotion, *, event: str = "", date: 
              f"{event}, {date}, {station}, {component}",
              "ACCELERATION TIME SERIES IN UNITS OF G",
              f"NPTS={vals.size:7d}, DT={dt:10.7f} SEC", *rows]
-    path = Path(path)
-    path.write_text("\n".join(lines) + "\n", encoding="latin-1")
-    return path
+    from rockarch.output import atomic_write
+
+    text = "\n".join(lines) + "\n"
+    return atomic_write(Path(path), lambda tmp: tmp.write_text(text, encoding="latin-1"))

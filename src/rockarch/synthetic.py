@@ -187,6 +187,91 @@ def generate(params: RDKParameters, seed: int | np.random.Generator | None = Non
     return GroundMotion(t, acc, name or "RDK synthetic", meta)
 
 
+@dataclass(frozen=True)
+class MPPulse:
+    """Near-fault velocity pulse of Mavroeidis & Papageorgiou (2003), Eq. (11.14):
+    v = (A/2)[1 + cos(2π(t − t0)/(γ Tp))] cos(2π(t − t0)/Tp + ν) for |t − t0| ≤ γTp/2.
+
+    tp : pulse period [s]; amplitude : A [m/s]; gamma : oscillatory character γ > 1;
+    nu : phase ν [rad]; t0 : centre of the pulse [s].
+    """
+
+    tp: float
+    amplitude: float
+    gamma: float
+    nu: float
+    t0: float
+
+    def __post_init__(self) -> None:
+        positive("pulse period", self.tp)
+        positive("pulse amplitude", self.amplitude)
+        in_range("pulse gamma", self.gamma, 1.0, 10.0, lo_open=True)
+        in_range("pulse t0", self.t0, 0.0, math.inf)
+
+    @property
+    def start(self) -> float:
+        """First instant of the pulse [s]."""
+        return self.t0 - 0.5 * self.gamma * self.tp
+
+    @property
+    def end(self) -> float:
+        """Last instant of the pulse [s]."""
+        return self.t0 + 0.5 * self.gamma * self.tp
+
+    def velocity(self, t) -> np.ndarray:
+        """Ground velocity of the pulse [m/s]."""
+        tau = np.asarray(t, dtype=float) - self.t0
+        k = 2 * math.pi / self.tp
+        v = 0.5 * self.amplitude * (1 + np.cos(k * tau / self.gamma)) * np.cos(k * tau + self.nu)
+        return np.where(np.abs(tau) <= 0.5 * self.gamma * self.tp, v, 0.0)
+
+    def acceleration(self, t) -> np.ndarray:
+        """Ground acceleration of the pulse [m/s²] (the derivative of :meth:`velocity`)."""
+        tau = np.asarray(t, dtype=float) - self.t0
+        k = 2 * math.pi / self.tp
+        a = -0.5 * self.amplitude * k * (np.sin(k * tau / self.gamma) * np.cos(k * tau + self.nu)
+                                         / self.gamma
+                                         + (1 + np.cos(k * tau / self.gamma))
+                                         * np.sin(k * tau + self.nu))
+        return np.where(np.abs(tau) <= 0.5 * self.gamma * self.tp, a, 0.0)
+
+
+def add_pulse(motion: GroundMotion, pulse: MPPulse) -> GroundMotion:
+    """The motion (uniformly sampled from t = 0) plus the pulse's acceleration, extended
+    with zeros if the pulse ends after it; the pulse's parameters go to ``meta``."""
+    t = np.asarray(motion.t)
+    dt = float(t[1] - t[0])
+    if pulse.start < t[0]:
+        raise ValueError(f"the pulse starts at {pulse.start:.3g} s, before the record")
+    n = max(t.size, int(math.ceil(pulse.end / dt)) + 2)
+    tt = t[0] + np.arange(n) * dt
+    acc = np.zeros(n)
+    acc[:t.size] = motion.a
+    meta = {**motion.meta, **{f"pulse_{k}": v for k, v in asdict(pulse).items()}}
+    return GroundMotion(tt, acc + pulse.acceleration(tt), motion.name, meta)
+
+
+#: Demo distribution of pulse parameters (our choice): Tp lognormal (median 2 s, σ_ln 0.5)
+#: clipped to 0.5…8 s, γ uniform 1.5…2.5, ν uniform 0…2π, centre t_mid ± 2 s, amplitude
+#: 1.5…3 × the PGV of the record it is added to and at least 0.35 m/s.
+PULSE_RANGES = {"tp": ("lognormal", 2.0, 0.5), "gamma": ("uniform", 1.5, 2.5),
+                "amplitude_over_pgv": ("uniform", 1.5, 3.0), "amplitude_min": 0.35}
+
+
+def draw_pulse(rng: np.random.Generator, motion: GroundMotion, t_mid: float) -> MPPulse:
+    """A pulse from :data:`PULSE_RANGES` for ``motion`` (whose PGV sets its amplitude)."""
+    from rockarch.intensity import pgv
+
+    r = PULSE_RANGES
+    tp = min(max(r["tp"][1] * math.exp(r["tp"][2] * rng.standard_normal()), 0.5), 8.0)
+    gamma = float(rng.uniform(*r["gamma"][1:]))
+    nu = float(rng.uniform(0.0, 2 * math.pi))
+    t0 = max(t_mid + float(rng.uniform(-2.0, 2.0)), 0.5 * gamma * tp)
+    amp = max(float(rng.uniform(*r["amplitude_over_pgv"][1:])) * pgv(motion),
+              r["amplitude_min"])
+    return MPPulse(tp=tp, amplitude=amp, gamma=gamma, nu=nu, t0=t0)
+
+
 #: Demo distribution of the model parameters in :func:`synthetic_suite` (our choice, centred
 #: near the sample means Rezaeian & Der Kiureghian (2010) report for their NGA set):
 #: lognormal (median, σ_ln) for Ia [m/s], D5-95 [s] and f_mid [Hz], uniform ranges for
@@ -222,29 +307,36 @@ def draw_parameters(rng: np.random.Generator) -> RDKParameters:
                          f_slope=uniform("f_slope"), zeta_f=uniform("zeta_f"))
 
 
-def synthetic_motions(n: int, seed: int = 0, *, dt: float = DT,
-                      f_corner: float = F_CORNER) -> list[GroundMotion]:
+def synthetic_motions(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
+                      pulse_fraction: float = 0.0) -> list[GroundMotion]:
     """``n`` synthetic records named ``rdk-s{seed}-{k:03d}``, parameters drawn from
     :data:`PARAMETER_RANGES`; the same (n, seed) gives the same records, and the first m of
-    a larger n are the records of n = m."""
+    a larger n are the records of n = m. Each record gets a Mavroeidis–Papageorgiou pulse
+    (:data:`PULSE_RANGES`) with probability ``pulse_fraction`` (0: none, 1: every one);
+    the noise part of record k does not depend on ``pulse_fraction``."""
     n = int(n)
     if n < 1:
         raise ValueError(f"need at least one synthetic record, got n = {n}")
+    fraction = in_range("pulse fraction", pulse_fraction, 0.0, 1.0)
     out = []
     for k, child in enumerate(np.random.SeedSequence(int(seed)).spawn(n)):
         rng = np.random.default_rng(child)
         params = draw_parameters(rng)
-        out.append(generate(params, rng, dt=dt, f_corner=f_corner,
-                            name=f"rdk-s{int(seed)}-{k:03d}"))
+        m = generate(params, rng, dt=dt, f_corner=f_corner, name=f"rdk-s{int(seed)}-{k:03d}")
+        if rng.uniform() < fraction:
+            m = add_pulse(m, draw_pulse(rng, m, params.t_mid))
+        out.append(m)
     return out
 
 
-def synthetic_suite(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER):
+def synthetic_suite(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
+                    pulse_fraction: float = 0.0):
     """A :class:`rockarch.suite.Suite` of ``n`` synthetic records (see
     :func:`synthetic_motions`); each record's model parameters are in ``motion.meta``."""
     from rockarch.suite import from_motions
 
-    return from_motions(synthetic_motions(n, seed, dt=dt, f_corner=f_corner))
+    return from_motions(synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
+                                          pulse_fraction=pulse_fraction))
 
 
 #: File listing the model parameters of a written synthetic suite (not read as a record).
@@ -252,26 +344,30 @@ PARAMETERS_FILE = "_synthetic_parameters.csv"
 
 
 def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
-                f_corner: float = F_CORNER) -> list:
+                f_corner: float = F_CORNER, pulse_fraction: float = 0.0) -> list:
     """Write ``n`` synthetic records as ``.AT2`` files ``rdk-s{seed}-{k:03d}.AT2`` into
-    ``directory`` (created if its parent exists), with their model parameters in
+    ``directory`` (created with its missing parents), with their model parameters in
     :data:`PARAMETERS_FILE`. Returns the record paths."""
     from pathlib import Path
 
+    from rockarch.output import check_output_dir, write_text
     from rockarch.suite import write_at2
 
     directory = Path(directory)
-    if not directory.parent.resolve().is_dir():
-        raise ValueError(f"{directory.parent}: directory does not exist")
-    directory.mkdir(exist_ok=True)
+    check_output_dir(directory)
+    directory.mkdir(parents=True, exist_ok=True)
     paths, lines = [], []
     keys = list(RDKParameters.__dataclass_fields__)
-    for m in synthetic_motions(n, seed, dt=dt, f_corner=f_corner):
+    pulse_keys = [f"pulse_{k}" for k in MPPulse.__dataclass_fields__]
+    for m in synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
+                               pulse_fraction=pulse_fraction):
         path = write_at2(directory / f"{m.name}.AT2", m,
                          event=f"Synthetic RDK08 seed {int(seed)}", station=m.name,
                          component="H")
         paths.append(path)
-        lines.append(",".join([path.name, *(f"{m.meta[k]:.10g}" for k in keys)]))
-    (directory / PARAMETERS_FILE).write_text(
-        "\n".join([",".join(["file", *keys]), *lines]) + "\n")
+        lines.append(",".join([path.name, *(f"{m.meta[k]:.10g}" for k in keys),
+                               *(f"{m.meta[k]:.10g}" if k in m.meta else ""
+                                 for k in pulse_keys)]))
+    write_text(directory / PARAMETERS_FILE,
+               "\n".join([",".join(["file", *keys, *pulse_keys]), *lines]) + "\n")
     return paths

@@ -8,7 +8,7 @@ frequency parameter ``p_ref``, and three calls that take the ground motion's *sh
   history, the motion scaled to PGA = ratio·ap_min, the structure scaled to frequency
   parameter p (p ∝ 1/sqrt(size) at fixed shape; None: its own size);
 - ``batch(motion, p, ratio)`` -> :class:`~rockarch.response.Batch`: many verdicts in
-  parallel (the OAS axes, docs/theory.md Eq. 4);
+  parallel (the OAS axes, docs/theory.md Eq. 2.1);
 - ``run(motion, p, ratio)`` -> (overturned, max_rotation_ratio): what a sweep stores.
 
 :func:`system` builds one from the keywords of ``rockarch oas`` / ``rockarch simulate``
@@ -51,7 +51,7 @@ MIN_FOURHINGE_BLOCKS = 4
 
 
 def scale_to_ratio(motion: GroundMotion, ratio: float, ap_min: float) -> GroundMotion:
-    """The motion scaled so that its peak |a_g| is ratio·ap_min (docs/theory.md Eq. 4)."""
+    """The motion scaled so that its peak |a_g| is ratio·ap_min (docs/theory.md Eq. 2.1)."""
     ratio = float(ratio)
     if not (ratio >= 0 and math.isfinite(ratio)):
         raise ValueError(f"ratio must be a finite number >= 0, got {ratio}")
@@ -422,7 +422,7 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
 def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None
              ) -> Response:
     """One time history: ``sys_`` at frequency parameter p (None: its own size) on the
-    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 4)."""
+    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 2.1)."""
     return sys_.simulate(motion, ratio=ratio, p=p)
 
 

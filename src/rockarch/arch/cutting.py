@@ -60,7 +60,7 @@ class Voussoirs:
                 for j in range(self.n)]
 
 
-def _polygon_props(v: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def polygons_props(v: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Area, centroid, polar moment about the centroid of polygons v (N, K, 2), vectorised."""
     o = v.mean(axis=1, keepdims=True)
     p = v - o
@@ -102,7 +102,7 @@ def voussoirs(arch: Arch, n: int) -> Voussoirs:
     # polygons: intrados forward, extrados backward
     idx = np.arange(n)[:, None] * sub + np.arange(sub + 1)[None, :]
     poly = np.concatenate([ip[idx], ep[idx][:, ::-1]], axis=1)
-    area, cen, jp = _polygon_props(poly)
+    area, cen, jp = polygons_props(poly)
     if np.any(area <= 0):
         raise ValueError("voussoir outlines overlap or turn inside out: thickness too large for "
                          "this axis")

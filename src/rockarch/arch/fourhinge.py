@@ -172,27 +172,31 @@ def kinematics(mech: FourHinge, u, *, second: bool = False) -> Kinematics:
 
 
 def generalized_inertia(mech: FourHinge, u) -> np.ndarray:
-    """A(u) = sum m (x'^2 + y'^2) + I phi'^2 (docs/theory.md §3; paper Eq. 12–13)."""
+    """A(u) = sum m (x'^2 + y'^2) + I phi'^2 (docs/theory.md Eq. 3.2; paper Eqs. 12–13)."""
     k = kinematics(mech, u)
     m, i = mech.mass[:, None], mech.inertia[:, None]
     return np.sum(m * (k.dx**2 + k.dy**2) + i * k.dphi**2, axis=0)
 
 
 def generalized_inertia_du(mech: FourHinge, u) -> np.ndarray:
-    """A'(u) = 2 sum m (x' x'' + y' y'') + 2 I phi' phi'' (docs/theory.md §3)."""
+    """A'(u) = 2 sum m (x' x'' + y' y'') + 2 I phi' phi''.
+
+    The u-derivative of docs/theory.md Eq. 3.2."""
     k = kinematics(mech, u, second=True)
     m, i = mech.mass[:, None], mech.inertia[:, None]
     return 2 * np.sum(m * (k.dx * k.d2x + k.dy * k.d2y) + i * k.dphi * k.d2phi, axis=0)
 
 
 def potential(mech: FourHinge, u) -> np.ndarray:
-    """V(u) = g sum m y(u), relative to u = 0 (docs/theory.md §3)."""
+    """V(u) = g sum m y(u), relative to u = 0 (docs/theory.md Eq. 3.2)."""
     k = kinematics(mech, u)
     return mech.g * np.sum(mech.mass[:, None] * (k.y - mech.centroid[:, 1:2]), axis=0)
 
 
 def potential_du(mech: FourHinge, u) -> np.ndarray:
-    """dV/du = g sum m y'(u): gravity's resisting generalised moment (docs/theory.md §3)."""
+    """dV/du = g sum m y'(u): gravity's resisting generalised moment.
+
+    B_v of docs/theory.md Eq. 3.3 at u = 0."""
     k = kinematics(mech, u)
     return mech.g * np.sum(mech.mass[:, None] * k.dy, axis=0)
 

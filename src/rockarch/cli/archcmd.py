@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import typer
 
-from rockarch._validate import positive
+from rockarch._validate import in_range, positive
 from rockarch.arch.fourhinge import analyse
 from rockarch.arch.geometry import MASS_MODELS, make_arch
 from rockarch.arch.thrust import minimum_thickness
@@ -48,6 +49,9 @@ def arch(
     rise = positive("--rise", rise)
     g = positive("--g", g)
     check_blocks(blocks)
+    if not min_thickness and lambda_ != 0.0:
+        raise ValueError("--lambda is used only with --min-thickness")
+    lambda_ = in_range("--lambda", lambda_, 0.0, math.inf, hi_open=True)
     if mass_model not in MASS_MODELS[:2]:
         raise ValueError(f"--mass-model must be voussoir or axis, got {mass_model!r}")
     if min_thickness:

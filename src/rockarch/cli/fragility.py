@@ -15,6 +15,7 @@ from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import Shape, System, echo_err, guarded, value
 from rockarch.cli._sweep import open_sweep
+from rockarch.output import check_outputs
 from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
 
@@ -53,7 +54,8 @@ def fragility(
                                       "(default: the structure's own impact law)."),
     p: float = typer.Option(..., "--p", help="Frequency parameter of the structure [1/s]."),
     records: list[Path] = typer.Option(..., "--records", help="Folder of .AT2 records or "
-                                       "record files (repeat --records for several)."),
+                                       "record files; several may follow one --records."),
+    more: list[Path] = typer.Argument(None, hidden=True),
     units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
     im: str = typer.Option("pga", help="Intensity measure: pga, pgv or sa."),
     period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa)."),
@@ -81,6 +83,8 @@ def fragility(
         raise ValueError(f"--im must be one of {', '.join(fr.IMS)}, got {im!r}")
     if bootstrap < 0:
         raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
+    if not 0 < level < 1:
+        raise ValueError(f"--level must lie in (0, 1), got {level}")
     sysobj = make_system(system.value, alpha=alpha, shape=value(shape),
                          rise_over_span=rise_over_span,
                          thickness_over_span=thickness_over_span, blocks=blocks,
@@ -90,8 +94,8 @@ def fragility(
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     rng = im_range_si(im_range, im)
-    cc.check_outputs(plot)
-    suite = read_suite(records, units=units)
+    check_outputs((plot, "--plot", "png"))
+    suite = read_suite(list(records) + list(more or []), units=units)
     motions = suite.motions
     if workers is None and scheduler is None and dask_workers is None \
             and len(motions) >= POOL_MIN_RECORDS and (os.cpu_count() or 1) > 1:
@@ -107,14 +111,18 @@ def fragility(
         known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
         rng = (known.min() / 2, known.max() * 2)
     grid = np.geomspace(rng[0], rng[1], 41)
-    frag = fr.fit_ida(res, n_bootstrap=bootstrap, level=level, im_grid=grid)
+    try:
+        frag = fr.fit_ida(res, n_bootstrap=bootstrap, level=level, im_grid=grid)
+    except fr.TooFewCollapses as exc:  # the points are still the answer: print them
+        echo_err(f"warning: {exc}; no lognormal fit")
+        frag = fr.Fragility(res, None, {})
     if plot is not None:
-        from rockarch.plot import save_figure
+        from rockarch.output.figures import save_figure
         from rockarch.plot_fragility import plot_fragility
 
         save_figure(plot_fragility(frag, rng), plot)
     if json_out:
-        cc.print_json(frag.as_dict())
+        cc.print_json(frag.to_dict())
         return
     _print_table(frag)
     if plot is not None:
@@ -123,13 +131,16 @@ def fragility(
 
 def _print_table(frag: fr.Fragility) -> None:
     r, fit, unit = frag.ida, frag.fit, fr.IM_UNITS[frag.ida.im]
+    name = r.im if r.period is None else f"{r.im}(T = {r.period:g} s)"
     typer.echo(f"fragility of {r.system} at p = {r.p:g} 1/s over {len(r.records)} records "
-               f"(IM = {r.im} [{unit}])")
+               f"(IM = {name} [{unit}])")
     typer.echo(f"{'record':<44} {'IM at collapse':>15} {'resurrections':>14}")
     for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit, r.resurrections,
                                strict=True):
         txt = f"{v:.4g}" if np.isfinite(v) else f"> {lim:.4g}"
         typer.echo(f"{name[:44]:<44} {txt:>15} {n:>14d}")
+    if fit is None:
+        return
     typer.echo(f"lognormal (maximum likelihood, {fit.n_censored} censored): median "
                f"{fit.median:.4g} {unit}, beta {fit.beta:.3f}")
     ci = frag.ci

@@ -11,6 +11,7 @@ from rockarch import intensity, synthetic
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
+from rockarch.output import check_outputs
 from rockarch.suite import describe, read_suite
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
@@ -38,34 +39,57 @@ def info(
     periods: str = typer.Option(",".join(f"{p:g}" for p in intensity.PERIODS),
                                 help="Periods of Sa(T) [s], comma-separated."),
     damping: float = typer.Option(intensity.DAMPING, help="Damping ratio of Sa(T)."),
+    plot: Path = typer.Option(None, help="PNG of the records' Sa/PGA spectra, median and "
+                              "16–84 % band."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Each record's event, station, component, dt, duration and intensity measures (PGA,
     PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
     in --json."""
     per = float_list("--periods", periods)
+    check_outputs((plot, "--plot", "png"))
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
+    if plot is not None:
+        from rockarch.output.figures import save_figure
+        from rockarch.plot_suite import plot_spectra
+
+        save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),
-                    "damping": damping, "records": rows, "notes": list(suite.notes)})
+                    "damping": damping, "records": rows, "notes": list(suite.notes),
+                    "plot": None if plot is None else str(plot)})
         return
     if suite.csv:
         typer.echo(f"metadata: {suite.csv}")
     for note in suite.notes:
         typer.echo(f"note: {note}")
-    typer.echo(f"{'record':40s} {'event':22s} {'station':26s} {'comp':>5s} {'dt':>6s} "
-               f"{'dur':>6s} {'PGA[g]':>7s} {'PGV':>6s} {'PGD':>6s} {'Ia':>6s} "
-               f"{'D5-95':>6s} {'Tm':>5s} {'pulse':>10s} {'Tp':>5s}")
+    meta = any(r["magnitude"] is not None or r["scale_factor"] is not None for r in rows)
+    head = (f"{'record':40s} {'event':22s} {'station':26s} {'comp':>5s} {'dt':>6s} "
+            f"{'dur':>6s} {'PGA[g]':>7s} {'PGV':>6s} {'PGD':>6s} {'Ia':>6s} "
+            f"{'D5-95':>6s} {'Tm':>5s} {'pulse':>10s} {'Tp':>5s}")
+    typer.echo(head + (f" {'M':>5s} {'Rrup':>6s} {'Vs30':>6s} {'SF':>6s}" if meta else ""))
     for r in rows:
-        typer.echo(f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
-                   f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
-                   f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
-                   f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
-                   f"{r['tm']:5.2f} {r['pulse_class']:>10s} {r['tp']:5.2f}")
+        line = (f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
+                f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
+                f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
+                f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
+                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {_num(r['tp'], 5, 2)}")
+        if meta:
+            line += "".join(f" {_num(r[k], w, d)}" for k, w, d in
+                            (("magnitude", 5, 2), ("rrup", 6, 1), ("vs30", 6, 0),
+                             ("scale_factor", 6, 3)))
+        typer.echo(line)
     typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s (Baker 2007 pulse "
-               "period); Sa(T) in --json")
+               "period)" + ("; Rrup km, Vs30 m/s, SF csv scale factor" if meta else "")
+               + "; Sa(T) in --json")
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
+
+
+def _num(value, width: int, digits: int) -> str:
+    return f"{'-':>{width}s}" if value is None else f"{value:{width}.{digits}f}"
 
 
 @records_app.command("synth", short_help="Write a seeded synthetic suite of .AT2 records.")
@@ -76,13 +100,18 @@ def synth(
     seed: int = typer.Option(0, help="Random seed (same seed, same records)."),
     dt: float = typer.Option(synthetic.DT, help="Time step [s]."),
     f_corner: float = typer.Option(synthetic.F_CORNER, help="High-pass corner [Hz] (0: none)."),
+    pulse_fraction: float = typer.Option(0.0, help="Probability that a record carries a "
+                                         "near-fault velocity pulse (Mavroeidis & "
+                                         "Papageorgiou 2003), 0…1."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Synthetic records of the Rezaeian & Der Kiureghian (2008) stochastic model, written
     as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
-    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner)
+    check_outputs((directory, "DIRECTORY", "dir"))
+    paths = synthetic.write_suite(directory, n, seed, dt=dt, f_corner=f_corner,
+                                  pulse_fraction=pulse_fraction)
     if json_out:
         print_json({"directory": str(directory), "seed": seed,
                     "records": [p.name for p in paths],

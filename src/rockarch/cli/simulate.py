@@ -239,9 +239,9 @@ def animate(
     t_free: float = typer.Option(3.0, help="Free motion after the ground motion ends [s]."),
     g: float = G_OPT, h_factor: float = MDOF_H_OPT, gap_tol: float = MDOF_TOL_OPT,
     fps: int = typer.Option(20, help="Frames per second of simulated time (the GIF plays "
-                            "in real time unless --frames caps the count)."),
-    frames: int = typer.Option(150, help="Largest number of frames (spread evenly over the "
-                               "motion when fps × duration is larger)."),
+                            "in real time)."),
+    frames: int = typer.Option(150, help="Largest number of frames (when fps × duration is "
+                               "larger, this many, spread evenly over the motion)."),
     magnify: float = typer.Option(1.0, help="Magnify the displacements (>= 1); the held "
                                   "last frame is magnified further when its displacements "
                                   "would be too small to see (the factor is in its title)."),

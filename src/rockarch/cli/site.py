@@ -74,6 +74,9 @@ def site_oas(
                                tol=tol, hashes=hashes, t_free=t_free,
                                progress=sys.stderr.isatty(), executor=executor,
                                store=chunk_store)
+    from rockarch.charsite import characteristic
+
+    ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
     with staged(out, plot) as (out_tmp, plot_tmp):
         site_mod.save(ds, out_tmp)
         if plot is not None:
@@ -106,11 +109,13 @@ def design(
                               "PGA [m/s²]."),
     probability: float = typer.Option(0.1, help="With --records: the PGA at this "
                                       "probability of collapse."),
+    save_site: Path = typer.Option(None, help="With --records: also write the site OAS "
+                                   "computed on the fly (NetCDF, reusable as --site)."),
     thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
                                        "equivalent (same ap,min) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
                               "(percentile), normalised (over p·Tm) or simplified (two "
-                              "durations); the last two need --records."),
+                              "durations)."),
     replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
                                          "(uniform mass) or weighted (the funicular of the "
                                          "arch's own mass)."),
@@ -124,9 +129,11 @@ def design(
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
-    check_outputs((report, "--report", "html"))
+    check_outputs((report, "--report", "html"), (save_site, "--save-site", "netcdf"))
     if (site_file is None) == (not records):
         raise ValueError("give either --site FILE or --records DIR")
+    if save_site is not None and not records:
+        raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
     if records:
         from rockarch import charsite
         from rockarch.suite import read_suite
@@ -136,6 +143,8 @@ def design(
         with open_sweep(n_sims=n_sims, echo=echo_err) as (executor, chunk_store):
             site_ds = charsite.site_from_records(suite, executor=executor, store=chunk_store,
                                                 progress=sys.stderr.isatty())
+        if save_site is not None:
+            site_mod.save(site_ds, save_site)
     else:
         site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
@@ -145,6 +154,18 @@ def design(
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
+    extra, html_extra = {}, ""
+    if records:
+        from rockarch import fragility as fr
+
+        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
+                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                                 ratio=site_ds["ratio"].values)
+        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
+        if report is not None:
+            from rockarch.plot_fragility import fragility_html
+
+            html_extra = fragility_html(frag, extra["fragility"])
     if report is not None:
         from rockarch.output.report import write_report
 
@@ -155,17 +176,9 @@ def design(
                + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
                f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
         write_report(res, site_ds, report, command=cmd,
-                     site_path=str(site_file) if site_file else None,
+                     site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
-    extra = {}
-    if records:
-        from rockarch import fragility as fr
-
-        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
-                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
-                                 ratio=site_ds["ratio"].values)
-        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
     if json_out:
         print_json({**res.to_dict(), **extra})
         return

@@ -229,7 +229,7 @@ def column(blocks, *, g: float = G, name: str | None = None) -> Assembly:
 
 
 def single_block(width: float, height: float, *, g: float = G) -> Assembly:
-    """One rectangular block on the ground (Housner's block, physics note Sect. 1)."""
+    """One rectangular block on the ground (Housner's block, docs/theory.md §1)."""
     return column([(width, height)], g=g, name=f"block B={width:g} H={height:g}")
 
 

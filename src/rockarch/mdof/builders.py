@@ -26,8 +26,7 @@ from dataclasses import replace
 import numpy as np
 
 from rockarch._validate import positive
-from rockarch.arch.cutting import voussoirs
-from rockarch.arch.geometry import Arch
+from rockarch.arch import Arch, voussoirs
 from rockarch.constants import G
 from rockarch.mdof import polygons as pg
 from rockarch.mdof.assembly import Assembly

@@ -24,7 +24,9 @@ TOL_LCP = 1e-7
 
 @nb.njit(cache=True)
 def band_solve(n, kb, rhs, lb, out):
-    """Cholesky of the banded SPD matrix kb (lower band) into lb, then solve for rhs."""
+    """Cholesky of the banded SPD matrix kb (lower band, half-bandwidth kb.shape[1] − 1)
+    into lb, then solve for rhs."""
+    KD = kb.shape[1] - 1  # noqa: N806 (the module's KD for chains)
     for i in range(n):
         for d in range(KD, -1, -1):
             j = i - d
@@ -56,6 +58,7 @@ def band_solve(n, kb, rhs, lb, out):
 @nb.njit(cache=True)
 def wmul(n, wb, lam, i):
     """(W·lam)_i from the lower band."""
+    KD = wb.shape[1] - 1  # noqa: N806
     s = wb[i, 0] * lam[i]
     for d in range(1, KD + 1):
         j = i - d
@@ -130,4 +133,83 @@ def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
                     lam[i] = 0.0
             return it + 1
         free[add] = True
+    return -_MAX_PIVOTS
+
+
+@nb.njit(cache=True)
+def box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l):
+    """min ½ΛᵀWΛ + Λᵀq subject to lo ≤ Λ ≤ hi (W banded, any half-bandwidth wb.shape[1] − 1,
+    eps added to its diagonal) by the same
+    primal active-set method as :func:`lcp`: ``st`` (warm start in, working set out) is 0
+    for a free row, 1 held at lo, 2 held at hi; a row with lo = hi is always held. Returns
+    the number of banded solves (negative if it did not finish)."""
+    kd = wb.shape[1] - 1
+    for i in range(n):
+        if lo[i] == hi[i]:
+            st[i] = 1
+        lam[i] = lo[i] if st[i] == 1 else (hi[i] if st[i] == 2 else min(max(0.0, lo[i]),
+                                                                         hi[i]))
+    for it in range(_MAX_PIVOTS):
+        for i in range(n):
+            s = -q[i]
+            for d in range(kd + 1):
+                j = i - d
+                if j < 0:
+                    kb[i, d] = 0.0
+                elif st[i] == 0 and st[j] == 0:
+                    kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
+                else:
+                    kb[i, d] = 1.0 if d == 0 else 0.0
+            if st[i] == 0:
+                for d in range(1, kd + 1):  # held rows enter the free rows' right-hand side
+                    j = i - d
+                    if j >= 0 and st[j] != 0:
+                        s -= wb[i, d] * lam[j]
+                    j = i + d
+                    if j < n and st[j] != 0:
+                        s -= wb[j, d] * lam[j]
+                rhs[i] = s
+            else:
+                rhs[i] = lam[i]
+        if not band_solve(n, kb, rhs, lb, sol):
+            return -1
+        alpha = 1.0
+        block = -1
+        side = 0
+        for i in range(n):
+            if st[i] != 0:
+                continue
+            dl = sol[i] - lam[i]
+            if sol[i] < lo[i] and dl < 0.0:
+                a = (lo[i] - lam[i]) / dl
+                if a < alpha:
+                    alpha, block, side = a, i, 1
+            elif sol[i] > hi[i] and dl > 0.0:
+                a = (hi[i] - lam[i]) / dl
+                if a < alpha:
+                    alpha, block, side = a, i, 2
+        for i in range(n):
+            lam[i] += alpha * (sol[i] - lam[i])
+        if block >= 0 and (sol[block] < lo[block] - tol_l or sol[block] > hi[block] + tol_l):
+            lam[block] = lo[block] if side == 1 else hi[block]
+            st[block] = side
+            continue
+        if block >= 0:
+            for i in range(n):
+                lam[i] = sol[i]
+        worst = tol_u
+        add = -1
+        for i in range(n):
+            if st[i] == 0 or lo[i] == hi[i]:
+                continue
+            u = q[i] + wmul(n, wb, lam, i) + eps * lam[i]
+            v = -u if st[i] == 1 else u  # held at lo: wants to go lower iff u < 0
+            if v > worst:
+                worst = v
+                add = i
+        if add < 0:
+            for i in range(n):
+                lam[i] = min(max(lam[i], lo[i]), hi[i])
+            return it + 1
+        st[add] = 0
     return -_MAX_PIVOTS

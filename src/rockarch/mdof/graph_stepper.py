@@ -22,14 +22,20 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
-from rockarch.mdof.chain_solver import EPS_REG
+from rockarch.mdof.chain_solver import EPS_REG, box_qp
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
-from rockarch.mdof.graph_solver import NSGS_TOL, apply_impulse, nsgs, solve3
+from rockarch.mdof.graph_solver import NSGS_TOL, apply_impulse, joint_velocity, nsgs, solve3
 from rockarch.mdof.kinematics import advance, cumint, cumint_knots
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
 PROJECT_SWEEPS = 3
+#: Fixed-point iterations on the joints' normal impulses (chains with friction) before a
+#: step counts as a failure.
+MAX_OUTER = 50
+#: Tolerance of that fixed point: the friction bounds in use repeat within FP_TOL of the
+#: largest joint impulse.
+FP_TOL = 1e-4
 
 
 @nb.njit(cache=True)
@@ -127,34 +133,121 @@ def joint_blocks(nj, ba, bb, ja, jb, im, ii, eps, wl):
 
 
 @nb.njit(cache=True)
+def band_w(m, ja, jb, im, ii, wb):
+    """Lower band of W = J·M⁻¹·Jᵀ, wb[i, d] = W[i, i − d] (d ≤ wb.shape[1] − 1, which the
+    joint ordering of :func:`rockarch.mdof.kernel_data.graph_model` guarantees): every body
+    adds the products of the rows of the joints it takes part in."""
+    wb[:] = 0.0
+    for j in range(m.mass.shape[0]):
+        for p in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
+            kp = m.inc_joint[p]
+            jp = ja if m.inc_side[p] == 0 else jb
+            for q in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
+                kq = m.inc_joint[q]
+                if kq > kp:
+                    continue
+                jq = ja if m.inc_side[q] == 0 else jb
+                for a in range(3):
+                    i = 3 * kp + a
+                    for b in range(3):
+                        r = 3 * kq + b
+                        if r <= i:
+                            wb[i, i - r] += (jp[i, 0] * jq[r, 0] + jp[i, 1] * jq[r, 1]) * im[j] \
+                                + jp[i, 2] * jq[r, 2] * ii[j]
+
+
+@nb.njit(cache=True)
+def banded_friction(m, ws, eps, tol_u, tol_l):
+    """Exact contact solve with friction (docs/theory.md §9): box-constrained QPs
+    (|Λ_t| ≤ μ·s_k, Λ_n ≥ 0) by the banded active-set method, iterated on the joints'
+    normal sums s_k until the bounds in use repeat and every sticking joint lies inside its
+    cone, within ``FP_TOL`` of the largest joint impulse (then Λ solves the Coulomb problem
+    to that tolerance). Returns the number of banded solves (negative: failed)."""
+    nj = m.n0.shape[0]
+    total = 0
+    for _outer in range(MAX_OUTER):
+        for k in range(nj):
+            for c in range(2):
+                ws.lo[3 * k + c] = 0.0
+                ws.hi[3 * k + c] = np.inf
+            if math.isinf(m.mu[k]):
+                ws.lo[3 * k + 2] = -np.inf
+                ws.hi[3 * k + 2] = np.inf
+            else:
+                b = m.mu[k] * max(ws.lam[3 * k] + ws.lam[3 * k + 1], 0.0)
+                if _outer >= 3:  # damped: the plain iteration may oscillate
+                    b = 0.5 * (b + ws.hi[3 * k + 2])
+                ws.lo[3 * k + 2] = -b
+                ws.hi[3 * k + 2] = b
+        its = box_qp(3 * nj, ws.wb, ws.q, ws.lo, ws.hi, ws.st, ws.lam, ws.kb, ws.lb, ws.rhs,
+                     ws.sol, eps, tol_u, tol_l)
+        if its < 0:
+            return -1 - total
+        total += its
+        # converged when no bound in use moved and every sticking joint is inside its cone
+        diff = 0.0
+        smax = 0.0
+        for k in range(nj):
+            smax = max(smax, ws.lam[3 * k] + ws.lam[3 * k + 1])
+        for k in range(nj):
+            if not math.isinf(m.mu[k]):
+                b = m.mu[k] * (ws.lam[3 * k] + ws.lam[3 * k + 1])
+                if ws.st[3 * k + 2] != 0:
+                    diff = max(diff, abs(b - ws.hi[3 * k + 2]))
+                else:
+                    diff = max(diff, abs(ws.lam[3 * k + 2]) - b)
+        if diff <= max(tol_l, FP_TOL * smax):
+            return total
+    return -1 - total
+
+
+@nb.njit(cache=True)
 def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
     """Geometry at (x, y, ph), contact impulses for the free velocities (vx, vy, om), which
-    are turned into v⁺ in place. Warm start: ws.lam, ws.case. Returns the NSGS sweeps."""
+    are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st. Exact banded solve
+    (:func:`banded_friction`), or Gauss–Seidel sweeps if the model says so. Returns the solver's
+    iteration count (negative: failed)."""
     nj = m.n0.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, m.n0, ws.gap, ws.ja, ws.jb)
     for k in range(nj):
         for c in range(3):
             r = 3 * k + c
             ws.bias[r] = ws.gap[k, c] / hh if c < 2 and ws.gap[k, c] > gtol else 0.0
-    joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
     d = np.empty(3)
+    if m.banded:
+        band_w(m, ws.ja, ws.jb, ws.im, ws.ii, ws.wb)
+        for k in range(nj):
+            joint_velocity(k, m.ba, m.bb, ws.ja, ws.jb, ws.bias, vx, vy, om, d)
+            for i in range(3):
+                ws.q[3 * k + i] = d[i]
+        its = banded_friction(m, ws, eps, tol_u, tol_l)
+    else:
+        joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
     for k in range(nj):
         for i in range(3):
             d[i] = ws.lam[3 * k + i]
         apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, vx, vy, om)
+    if m.banded:
+        return its
     return nsgs(nj, m.ba, m.bb, ws.ja, ws.jb, ws.wl, ws.bias, m.mu, ws.im, ws.ii, vx, vy, om,
                 ws.lam, ws.case, tol_u, tol_l)
 
 
 @nb.njit(cache=True)
-def project(m, x, y, ph, eps, keep, slip_tol, ws):
+def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws):
     """Position stabilisation: Gauss–Seidel on W·μ = −gap over the kept rows (closed
-    corners that carried an impulse; the no-slip rows of μ = ∞ joints while their offset
-    is drift-sized), then q += M⁻¹·Jᵀ·μ (velocities untouched)."""
+    corners that carried an impulse, and their joint's tangential row), then
+    q += M⁻¹·Jᵀ·μ (velocities untouched). Tangential targets: 0 for μ = ∞ joints while
+    the offset is drift-sized; ``anchor`` (the offset when the joint last slid or was
+    open) for a sticking joint; the current offset for a joint in ``free_t`` (sliding or
+    open), whose anchor it becomes."""
     nj = m.n0.shape[0]
     nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, m.n0, ws.gap, ws.ja, ws.jb)
     joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
+    for k in range(nj):
+        if free_t[k]:
+            anchor[k] = ws.gap[k, 2]
     dx = np.zeros(nbod)
     dy = np.zeros(nbod)
     dp = np.zeros(nbod)
@@ -172,8 +265,11 @@ def project(m, x, y, ph, eps, keep, slip_tol, ws):
             for i in range(3):
                 r = 3 * k + i
                 s = ws.gap[k, i]
-                if i == 2 and (not math.isinf(m.mu[k]) or abs(s) > slip_tol):
-                    s = 0.0
+                if i == 2:
+                    if not math.isinf(m.mu[k]):
+                        s -= anchor[k]
+                    elif abs(s) > slip_tol:
+                        s = 0.0
                 if a >= 0:
                     s += ws.ja[r, 0] * dx[a] + ws.ja[r, 1] * dy[a] + ws.ja[r, 2] * dp[a]
                 if b >= 0:
@@ -206,15 +302,27 @@ class Work(NamedTuple):
     bias: np.ndarray
     lam: np.ndarray
     case: np.ndarray
+    wb: np.ndarray  # banded solve of chains: W, its factor, the matrix solved
+    lb: np.ndarray
+    kb: np.ndarray
+    q: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    rhs: np.ndarray
+    sol: np.ndarray
+    st: np.ndarray
 
 
 @nb.njit(cache=True)
 def _work(m, scale, lam, case):
     nj = m.n0.shape[0]
     n = 3 * nj
+    kd = m.kd if m.banded else 0
     return Work(m.ra * scale, m.rb * scale, 1.0 / m.mass, 1.0 / (m.inertia * scale * scale),
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
-                np.zeros(n), lam, case)
+                np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
+                np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+                np.zeros(n), np.zeros(n, dtype=np.int8))
 
 
 @nb.njit(cache=True)
@@ -226,11 +334,13 @@ def _kinetic(mass, ii, vx, vy, om):
 
 
 @nb.njit(cache=True)
-def _sliding(m, ws, vx, vy, om, tol_u):
-    """Joints with finite μ that carry a normal impulse and slide (|U_t| > tol_u)."""
+def _sliding(m, ws, vx, vy, om, tol_u, free_t):
+    """Number of joints with finite μ that carry a normal impulse and slide (|U_t| > tol_u);
+    ``free_t``: those joints and the joints without a normal impulse."""
     n_sl = 0
     for k in range(m.n0.shape[0]):
-        if math.isinf(m.mu[k]) or ws.lam[3 * k] + ws.lam[3 * k + 1] <= 0.0:
+        free_t[k] = ws.lam[3 * k] + ws.lam[3 * k + 1] <= 0.0
+        if math.isinf(m.mu[k]) or free_t[k]:
             continue
         a = m.ba[k]
         b = m.bb[k]
@@ -242,6 +352,7 @@ def _sliding(m, ws, vx, vy, om, tol_u):
             u += ws.jb[r, 0] * vx[b] + ws.jb[r, 1] * vy[b] + ws.jb[r, 2] * om[b]
         if abs(u) > tol_u:
             n_sl += 1
+            free_t[k] = True
     return n_sl
 
 
@@ -275,6 +386,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     tom = np.empty(nbod)
     was_open = np.zeros((nj, 2), dtype=np.bool_)
     keep = np.zeros(n, dtype=np.bool_)
+    free_t = np.zeros(nj, dtype=np.bool_)
+    anchor = np.zeros(nj)
     gmid = np.zeros((nj, 3))
     ck = cumint_knots(tk, ak)
     wmax = 0.0
@@ -308,7 +421,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             vy[j] -= h * g
         if contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws) < 0:
             fails += 1
-        n_sl = _sliding(m, ws, vx, vy, om, tol_u)
+        n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
         advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
         any_keep = False
@@ -324,11 +437,14 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             for c in range(3):
                 gmid[k, c] = ws.gap[k, c]
             max_slip = max(max_slip, abs(ws.gap[k, 2]))
-        if any_keep:
+        if not any_keep:
+            for k in range(nj):
+                anchor[k] = ws.gap[k, 2]
+        else:
             v0 = 0.0
             for j in range(nbod):
                 v0 += mass[j] * y[j]
-            project(m, x, y, ph, eps, keep, 100.0 * gtol, tws)
+            project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws)
             dv = -g * v0
             for j in range(nbod):
                 dv += g * mass[j] * y[j]
@@ -385,6 +501,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 tws.lam[r] = 0.5 * ws.lam[r]
             for k in range(nj):
                 tws.case[k] = ws.case[k]
+            for r in range(n):
+                tws.st[r] = ws.st[r]
             contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws)
             dd = 0.0
             dn = 0.0

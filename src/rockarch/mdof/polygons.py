@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from rockarch.arch.cutting import _polygon_props
+from rockarch.arch.cutting import polygons_props
 
 #: Relative tolerance (of the assembly's size) for coincident points, faces and overlaps.
 REL_TOL = 1e-7
@@ -21,7 +21,7 @@ REL_TOL = 1e-7
 
 def polygon_props(poly: np.ndarray) -> tuple[float, np.ndarray, float]:
     """Area, centroid (2,) and polar moment about the centroid of one polygon (unit density)."""
-    a, c, j = _polygon_props(np.asarray(poly, dtype=float)[None])
+    a, c, j = polygons_props(np.asarray(poly, dtype=float)[None])
     return float(a[0]), c[0], float(j[0])
 
 

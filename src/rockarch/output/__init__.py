@@ -8,6 +8,17 @@ histories, site OAS), :mod:`~rockarch.output.arch_plots` (arch drawings),
 :mod:`~rockarch.output.report` (design report), :mod:`~rockarch.output.animation` (MDOF
 GIF), :mod:`~rockarch.output.tables` (text tables). Importing this package does not import
 matplotlib; the names below load their module on first use.
+
+A command that writes files checks them all first, before any computation, then writes
+them together::
+
+    check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
+    ...  # compute
+    with staged(out, plot) as (out_tmp, plot_tmp):
+        save(ds, out_tmp)
+        save_figure(fig, plot_tmp)
+
+A new kind of file: add it to :data:`FORMATS` (name, extensions, description).
 """
 
 from __future__ import annotations
@@ -16,6 +27,7 @@ import importlib
 
 from rockarch.output.paths import (
     FORMATS,
+    OutputError,
     atomic_write,
     check_output,
     check_output_dir,
@@ -39,5 +51,5 @@ def __getattr__(name: str):
     raise AttributeError(f"module 'rockarch.output' has no attribute {name!r}")
 
 
-__all__ = ["FORMATS", "atomic_write", "check_output", "check_output_dir", "check_outputs",
-           "staged", "write_text", *_LAZY]
+__all__ = ["FORMATS", "OutputError", "atomic_write", "check_output", "check_output_dir",
+           "check_outputs", "staged", "write_text", *_LAZY]

@@ -3,8 +3,9 @@
 The static parts (axes, labels, legend, the a_g(t) curve) are rendered once; each frame
 restores that background and draws only what moves (the block polygons, the open joints,
 the time marker, the title) on the Agg canvas, then maps the pixels onto one fixed
-256-colour palette. Frames are taken at ``fps`` per second of simulated time, so the GIF
-plays in real time unless ``max_frames`` caps the count (then frames are spread evenly).
+256-colour palette. Frames are taken at ``fps`` per second of simulated time (at most
+``max_frames``, then spread evenly) and each is shown for the time to the next one, so the
+GIF plays in real time.
 The last frame is held and shows what its title says: the configuration at the last
 record (for a collapse: at t_overturn), with the displacements magnified by the stated
 factor when they would otherwise be too small to see.
@@ -18,8 +19,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from matplotlib.collections import PolyCollection
+from matplotlib.colors import to_rgb
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
+from PIL import Image
+from tqdm import tqdm
 
 from rockarch.output.figures import new_figure
 from rockarch.output.paths import atomic_write
@@ -133,68 +138,70 @@ def check_options(fps: int, max_frames: int, magnify: float) -> None:
         raise ValueError(f"--magnify must be a number >= 1, got {magnify}")
 
 
-def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
-            magnify: float = 1.0, progress: bool | None = None) -> Path:
-    """Write a GIF of an MDOF response (atomically).
+class _Renderer:
+    """The figure of an animation: static parts drawn once, :meth:`frame` redraws only the
+    moving artists (animated=True) over the saved background and returns the pixels."""
 
-    Left: the blocks (displacements in the frame moving with the ground, optionally
-    magnified), open joints coloured by their state (legend). Right: a_g(t) with the
-    current time. ``progress``: a progress bar on stderr (default: when stderr is a
-    terminal).
-    """
-    from PIL import Image
-    from tqdm import tqdm
+    def __init__(self, resp, plan: FramePlan) -> None:
+        self.resp = resp
+        self.fig = fig = new_figure((10, 4.1), dpi=DPI)
+        ax, axg = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
+        rest = _outlines(resp, resp.q[0])
+        self._structure_axes(ax, rest, _outlines(
+            resp, _config(resp, int(plan.indices[-1]), plan.final_magnify)))
+        self._ground_axes(axg)
+        fig.subplots_adjust(left=0.07, right=0.98, top=0.9, bottom=0.25, wspace=0.25)
+        # add_artist, not add_patch: the limits are set above, and add_patch's data-limit
+        # update walks every curve segment (the larger part of the drawing time otherwise)
+        self.patches = [ax.add_artist(Polygon(p, closed=True, fc="0.82", ec="0.25", lw=0.6,
+                                              animated=True)) for p in rest]
+        self.joint_lines = [ax.plot([], [], lw=3, solid_capstyle="round", animated=True)[0]
+                            for _ in range(resp.assembly.n_joints)]
+        self.marker = axg.axvline(0.0, color="k", lw=1, animated=True)
+        self.title = fig.suptitle("", fontsize=11, animated=True)
+        fig.canvas.draw()
+        self.background = fig.canvas.copy_from_bbox(fig.bbox)
 
-    check_options(fps, max_frames, magnify)
-    plan = plan_frames(resp, fps, max_frames, magnify)
-    a = resp.assembly
-    last = int(plan.indices[-1])
+    @staticmethod
+    def _structure_axes(ax, rest: list[np.ndarray], last: list[np.ndarray]) -> None:
+        """Limits holding the rest and the last (magnified) configuration, ground line,
+        labels, the outline at rest, the legend of the joint colours."""
+        pts = np.concatenate([*rest, *last])
+        span = float(np.ptp(pts, axis=0).max())
+        lo, hi = pts.min(axis=0) - 0.15 * span, pts.max(axis=0) + 0.15 * span
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(min(lo[1], -0.05 * span), hi[1])
+        ax.set_aspect("equal")
+        ax.axhline(0.0, color="0.3", lw=1)
+        ax.set_xlabel("x [m] (frame moving with the ground)")
+        ax.set_ylabel("y [m]")
+        ax.add_collection(PolyCollection(rest, closed=True, facecolors="none",
+                                         edgecolors="0.65", linestyles="--", linewidths=0.5),
+                          autolim=False)
+        ax.legend(handles=[Line2D([], [], color=c, lw=3, label=f"joint {lab}")
+                           for c, lab in STATE_STYLE.values()]
+                  + [Line2D([], [], color="0.65", ls="--", lw=0.8, label="at rest")],
+                  loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=7,
+                  frameon=False)
 
-    fig = new_figure((10, 4.1), dpi=DPI)
-    ax, axg = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
-    pts = np.concatenate([*_outlines(resp, resp.q[0]),
-                          *_outlines(resp, _config(resp, last, plan.final_magnify))])
-    span = float(np.ptp(pts, axis=0).max())
-    lo, hi = pts.min(axis=0) - 0.15 * span, pts.max(axis=0) + 0.15 * span
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(min(lo[1], -0.05 * span), hi[1])
-    ax.set_aspect("equal")
-    ax.axhline(0.0, color="0.3", lw=1)
-    ax.set_xlabel("x [m] (frame moving with the ground)")
-    ax.set_ylabel("y [m]")
-    for poly in _outlines(resp, resp.q[0]):
-        ax.add_patch(Polygon(poly, closed=True, fill=False, ec="0.65", ls="--", lw=0.5))
-    ax.legend(handles=[Line2D([], [], color=c, lw=3, label=f"joint {lab}")
-                       for c, lab in STATE_STYLE.values()]
-              + [Line2D([], [], color="0.65", ls="--", lw=0.8, label="at rest")],
-              loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=7,
-              frameon=False)
-    mot = resp.ground
-    if mot is not None:
-        tt = np.linspace(0.0, max(float(resp.t[-1]), 1e-9), 600)
-        axg.plot(tt, np.interp(tt, mot.t, mot.a, left=0.0, right=0.0), color="tab:blue")
-    axg.set_xlabel("t [s]")
-    axg.set_ylabel("a_g [m/s²]")
-    axg.grid(alpha=0.3)
-    fig.subplots_adjust(left=0.07, right=0.98, top=0.9, bottom=0.25, wspace=0.25)
-    patches = [ax.add_patch(Polygon(p, closed=True, fc="0.82", ec="0.25", lw=0.6,
-                                    animated=True)) for p in _outlines(resp, resp.q[0])]
-    joint_lines = [ax.plot([], [], lw=3, solid_capstyle="round", animated=True)[0]
-                   for _ in range(a.n_joints)]
-    marker = axg.axvline(0.0, color="k", lw=1, animated=True)
-    title = fig.suptitle("", fontsize=11, animated=True)
-    moving = [*patches, *joint_lines, marker, title]
-    canvas = fig.canvas
-    canvas.draw()
-    background = canvas.copy_from_bbox(fig.bbox)
+    def _ground_axes(self, axg) -> None:
+        mot = self.resp.ground
+        if mot is not None:
+            tt = np.linspace(0.0, max(float(self.resp.t[-1]), 1e-9), 600)
+            axg.plot(tt, np.interp(tt, mot.t, mot.a, left=0.0, right=0.0), color="tab:blue")
+        axg.set_xlabel("t [s]")
+        axg.set_ylabel("a_g [m/s²]")
+        axg.grid(alpha=0.3)
 
-    def render(i: int, mag: float, final: bool) -> Image.Image:
-        canvas.restore_region(background)
-        q = _config(resp, i, mag)
-        for patch, poly in zip(patches, _outlines(resp, q), strict=True):
+    def frame(self, i: int, magnify: float, final: bool) -> np.ndarray:
+        """RGB pixels (h, w, 3) of record i."""
+        resp, canvas = self.resp, self.fig.canvas
+        canvas.restore_region(self.background)
+        q = _config(resp, i, magnify)
+        for patch, poly in zip(self.patches, _outlines(resp, q), strict=True):
             patch.set_xy(poly)
         n_open = 0
-        for k, line in enumerate(joint_lines):
+        for k, line in enumerate(self.joint_lines):
             st = int(resp.joints[i, k])
             if st:
                 seg = _joint_segment(resp, q, k)
@@ -202,17 +209,36 @@ def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
                 line.set_color(STATE_STYLE[st][0])
                 n_open += 1
             line.set_visible(bool(st))
-        marker.set_xdata([resp.t[i], resp.t[i]])
-        title.set_text(_title(resp, i, n_open, mag, final))
-        for artist in moving:
-            fig.draw_artist(artist)
-        return Image.fromarray(np.asarray(canvas.buffer_rgba())[..., :3])
+        self.marker.set_xdata([resp.t[i], resp.t[i]])
+        self.title.set_text(_title(resp, i, n_open, magnify, final))
+        for artist in [*self.patches, *self.joint_lines, self.marker, self.title]:
+            self.fig.draw_artist(artist)
+        return np.asarray(canvas.buffer_rgba())[..., :3].copy()
 
-    swatch = np.array([[int(c * 255) for c in _rgb(col)] for col, _ in STATE_STYLE.values()],
+
+def _palette(first: np.ndarray) -> Image.Image:
+    """One 256-colour palette for every frame: the first frame's colours plus the joint
+    colours (which it may not show yet)."""
+    swatch = np.array([[int(c * 255) for c in to_rgb(col)] for col, _ in STATE_STYLE.values()],
                       dtype=np.uint8)
-    first = np.array(render(0, plan.magnify, False))
-    first[:swatch.shape[0], :1] = swatch[:, None, :]
-    palette = Image.fromarray(first).quantize(256, method=Image.Quantize.FASTOCTREE)
+    img = first.copy()
+    img[:swatch.shape[0], :1] = swatch[:, None, :]
+    return Image.fromarray(img).quantize(256, method=Image.Quantize.FASTOCTREE)
+
+
+def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
+            magnify: float = 1.0, progress: bool | None = None) -> Path:
+    """Write a GIF of an MDOF response (atomically).
+
+    Left: the blocks (displacements in the frame moving with the ground, optionally
+    magnified), open joints coloured by their state (legend). Right: a_g(t) with the
+    current time. Frames: :func:`plan_frames`. ``progress``: a progress bar on stderr
+    (default: when stderr is a terminal).
+    """
+    check_options(fps, max_frames, magnify)
+    plan = plan_frames(resp, fps, max_frames, magnify)
+    renderer = _Renderer(resp, plan)
+    palette = _palette(renderer.frame(0, plan.magnify, False))
     show = sys.stderr.isatty() if progress is None else progress
     n = plan.indices.size
 
@@ -221,9 +247,10 @@ def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
                   file=sys.stderr, leave=False) as bar:
             for k, i in enumerate(plan.indices):
                 final = k == n - 1
-                img = render(int(i), plan.final_magnify if final else plan.magnify, final)
+                rgb = renderer.frame(int(i), plan.final_magnify if final else plan.magnify,
+                                     final)
                 bar.update(1)
-                yield img.quantize(palette=palette, dither=Image.Dither.NONE)
+                yield Image.fromarray(rgb).quantize(palette=palette, dither=Image.Dither.NONE)
 
     it = frames()
     head = next(it)
@@ -233,9 +260,3 @@ def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
                   duration=[int(d) for d in plan.durations_ms])
 
     return atomic_write(path, write)
-
-
-def _rgb(color: str) -> tuple[float, float, float]:
-    from matplotlib.colors import to_rgb
-
-    return to_rgb(color)

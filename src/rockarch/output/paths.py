@@ -131,8 +131,11 @@ def temporary_name(path: Path) -> Path:
                           f"{path.suffix}")
 
 
-def _clean_message(exc: BaseException, pairs: list[tuple[Path, Path]]) -> str:
-    msg = getattr(exc, "strerror", None) or str(exc) or exc.__class__.__name__
+class OutputError(ValueError):
+    """An output could not be written (the message names the target, never a temporary)."""
+
+
+def _without_temporaries(msg: str, pairs: list[tuple[Path, Path]]) -> str:
     for tmp, final in pairs:
         msg = msg.replace(str(tmp), str(final)).replace(tmp.name, final.name)
     return msg
@@ -143,9 +146,10 @@ def staged(*paths: Path | str | None) -> Iterator[list[Path | None]]:
     """Temporary paths for several outputs, renamed onto ``paths`` together on success.
 
     Every target is checked first (:func:`check_output`). Yields one temporary path per
-    target (None stays None). If the block raises, every
-    temporary is removed and no target is touched; the error is re-raised as a ValueError
-    naming the target (never the temporary) unless it is a KeyboardInterrupt/SystemExit.
+    target (None stays None). If the block raises, every temporary is removed and no target
+    is touched; the error is re-raised as an :class:`OutputError` naming the target (never
+    a temporary), unless it is a KeyboardInterrupt/SystemExit. Stages nest (a writer may
+    itself write atomically onto the temporary it is given).
     """
     for p in paths:
         check_output(p)
@@ -157,11 +161,15 @@ def staged(*paths: Path | str | None) -> Iterator[list[Path | None]]:
         for tmp, final in pairs:
             os.replace(tmp, final)
     except Exception as exc:
+        if isinstance(exc, OutputError):  # from a nested stage: already says what failed
+            raise OutputError(_without_temporaries(str(exc), pairs)) from None
         target = pairs[0][1] if len(pairs) == 1 else ", ".join(str(f) for _, f in pairs)
         for tmp, final in pairs:
             if str(tmp) in str(exc) or tmp.name in str(exc):
                 target = final
-        raise ValueError(f"{target}: cannot write: {_clean_message(exc, pairs)}") from None
+        why = getattr(exc, "strerror", None) or str(exc) or exc.__class__.__name__
+        raise OutputError(f"{target}: cannot write: {_without_temporaries(why, pairs)}"
+                          ) from None
     finally:
         for tmp, _ in pairs:
             if tmp.exists() or tmp.is_symlink():

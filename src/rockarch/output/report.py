@@ -77,9 +77,10 @@ def _inputs_table(result: DesignResult, site_ds: xr.Dataset, inputs: dict,
 
 
 def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inputs: dict,
-                site_path: str | None = None) -> str:
+                site_path: str | None = None, extra_html: str = "") -> str:
     """The report as one HTML page; ``command`` reruns the check, ``inputs`` lists the
-    arch's parameters."""
+    arch's parameters; ``extra_html`` (e.g. the fragility of a suite) follows the site
+    OAS."""
     c = result.chosen
     rep = result.replacement
     g = result.g
@@ -116,6 +117,7 @@ l′ is the replacement's own span, l the arch's.</p>
 <h2>Site OAS</h2>
 {inline_figure(site_figure(result, site_ds), "site OAS")}
 {records}
+{extra_html}
 <h2>Chain of conservative assumptions</h2>
 <ol>{''.join(f'<li>{escape(a)}</li>' for a in ASSUMPTIONS)}</ol>
 <h2>Inputs (to rerun)</h2>
@@ -125,7 +127,7 @@ l′ is the replacement's own span, l the arch's.</p>
 
 
 def write_report(result: DesignResult, site_ds: xr.Dataset, path, *, command: str,
-                 inputs: dict, site_path: str | None = None) -> Path:
+                 inputs: dict, site_path: str | None = None, extra_html: str = "") -> Path:
     """Write the HTML report atomically (see :func:`report_html`)."""
     return write_text(path, report_html(result, site_ds, command=command, inputs=inputs,
-                                        site_path=site_path))
+                                        site_path=site_path, extra_html=extra_html))

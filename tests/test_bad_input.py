@@ -1,0 +1,308 @@
+"""Bad inputs across every sub-command: one line ``error: ...`` on stderr, exit status 2,
+no traceback, no file left behind, and no computation before the error (the whole file
+runs in seconds: every case fails before any sweep or simulation starts).
+
+The cases are generated: a valid base command per sub-command, then one option at a time
+replaced by bad values (sizes, angles, restitution, grids, lists, records, paths, Dask
+addresses, limits of rockarch.limits).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from rockarch import site
+from rockarch.cli import app
+from rockarch.records import bundled_record_path
+
+runner = CliRunner()
+REC = str(bundled_record_path(180))
+
+AT2_HEAD = ("PEER NGA STRONG MOTION DATABASE RECORD\nTest, 1/1/2000, Station, 90\n"
+            "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=      4, DT=   .0100 SEC\n")
+#: Bad record files: name -> content (bytes for binary files).
+BAD_RECORDS = {
+    "empty.txt": "",
+    "header_only.txt": "time acc\n",
+    "one_sample.txt": "0 0.1\n",
+    "nan.txt": "0 0.1\n0.01 nan\n0.02 0.3\n",
+    "inf.txt": "0 0.1\n0.01 inf\n0.02 0.3\n",
+    "nonuniform.txt": "0 0.1\n0.01 0.2\n0.03 0.3\n0.04 0.1\n",
+    "backwards.txt": "0 0.1\n0.02 0.2\n0.01 0.3\n",
+    "third_column.txt": "0 0.1\n0.01 0.2\n0.02 0.3 7\n0.03 0.1\n",
+    "one_column.txt": "0 0.1\n0.01\n0.02 0.3\n",
+    "words.txt": "0 0.1\n0.01 x\n",
+    "zeros.txt": "0 0\n0.01 0\n0.02 0\n",
+    "binary.txt": b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\x00\x01",
+    "binary.AT2": b"\x00\x01\x02\x03" * 64,
+    "short.AT2": "hello\n",
+    "npts.AT2": AT2_HEAD.replace("NPTS=      4", "NPTS=      9") + " .1 .2 .3 .4\n",
+    "velocity.AT2": AT2_HEAD.replace("ACCELERATION", "VELOCITY") + " .1 .2 .3 .4\n",
+    "feet.AT2": AT2_HEAD.replace("UNITS OF G", "UNITS OF FT/S2") + " .1 .2 .3 .4\n",
+    "dt.AT2": AT2_HEAD.replace(".0100", "0") + " .1 .2 .3 .4\n",
+    "nan.AT2": AT2_HEAD + " .1 NaN .3 .4\n",
+    "text.AT2": AT2_HEAD + " .1 abc .3 .4\n",
+}
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """The bad records, a folder, a plain file, a good two-column record, a site file."""
+    d = tmp_path_factory.mktemp("bad-inputs")
+    for name, content in BAD_RECORDS.items():
+        f = d / name
+        if isinstance(content, bytes):
+            f.write_bytes(content)
+        else:
+            f.write_text(content)
+    (d / "folder").mkdir()
+    (d / "plain.txt").write_text("not a netcdf file\n")
+    (d / "good.txt").write_text("0 0.1\n0.01 0.2\n0.02 -0.3\n0.03 0.0\n")
+    motions, hashes = site.load_records([REC])
+    ds = site.site_oas(motions, np.array([2.0, 4.0]), np.array([1.0, 3.0]), hashes=hashes,
+                       tol=0.0, progress=False)
+    site.save(ds, d / "site.nc")
+    return d
+
+
+def _sub(args: list[str], **repl) -> list[str]:
+    """Replace ``--opt value`` pairs (or append them); a value None removes the option."""
+    out = list(args)
+    for opt, val in repl.items():
+        key = "--" + opt.replace("_", "-")
+        if key in out:
+            i = out.index(key)
+            del out[i:i + 2]
+        if val is not None:
+            out += [key, str(val)]
+    return out
+
+
+SIM = {
+    "block": ["simulate", "block", "--alpha", "0.15", "--p", "2"],
+    "frame": ["simulate", "frame", "--alpha", "0.15", "--p", "2", "--mass-ratio", "0.5"],
+    "sdof": ["simulate", "sdof", "--p", "2", "--delta", "0.1", "--ap-min", "1.5"],
+    "fourhinge": ["simulate", "fourhinge", "--shape", "catenary", "--span", "10", "--rise",
+                  "3", "--thickness", "0.25"],
+    "mdof": ["simulate", "mdof", "--shape", "catenary", "--span", "10", "--rise", "3",
+             "--thickness", "0.25", "--blocks", "12"],
+}
+MOTION = ["--signal", "sine", "--period", "1", "--ratio", "2"]
+OAS = ["oas", "--alpha", "0.1", "--signal", "sine", "--period", "0.5", "--p", "1,2",
+       "--ratio-steps", "3", "--no-store"]
+ANIM = ["animate", "--shape", "catenary", "--span", "10", "--rise", "3", "--thickness",
+        "0.25", "--blocks", "12", "--out", "{tmp}/a.gif"] + MOTION
+ARCH = ["arch", "--shape", "catenary", "--span", "10", "--rise", "3", "--thickness", "0.25"]
+SITE = ["site-oas", "--records", REC, "--p-min", "1", "--p-max", "2", "--p-steps", "2",
+        "--ratio-steps", "2", "--out", "{tmp}/s.nc", "--no-store"]
+DESIGN = ["design", "--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness",
+          "0.35", "--site", "{files}/site.nc"]
+
+
+def _cases():
+    cases = []
+
+    def add(name, args):
+        cases.append(pytest.param(args, id=name))
+
+    # --- the five simulate kinds: sizes, angles, restitution, motion options
+    block = SIM["block"] + MOTION
+    for v in ("0", "-0.1", "1.5708", "2", "nan", "inf", "abc"):
+        add(f"block-alpha={v}", _sub(block, alpha=v))
+    for v in ("0", "-1", "nan", "1e300", "x"):
+        add(f"block-p={v}", _sub(block, p=v))
+    for v in ("-1", "nan", "inf", "two"):
+        add(f"block-ratio={v}", _sub(block, ratio=v))
+    for v in ("0", "-1", "nan", "inf"):
+        add(f"block-period={v}", _sub(block, period=v))
+    for v in ("-0.1", "1.5", "nan"):
+        add(f"block-restitution={v}", _sub(block, restitution=v))
+    for v in ("-1", "nan", "inf", "1e9"):
+        add(f"block-t-free={v}", _sub(block, t_free=v))
+    for v in ("0", "-9.81", "nan"):
+        add(f"block-g={v}", _sub(block, g=v))
+    for v in ("0", "-2", "1.5", "1000000"):
+        add(f"block-cycles={v}", _sub(block, signal="harmonic", cycles=v))
+    add("block-period=1e9", _sub(block, period="1e9"))
+    add("block-signal=bogus", _sub(block, signal="bogus"))
+    add("block-no-ratio", _sub(block, ratio=None))
+    add("block-no-motion", _sub(block, signal=None, period=None))
+    add("block-no-period", _sub(block, period=None))
+    add("block-record-and-signal", _sub(block, record=REC))
+    add("block-no-size", _sub(block, alpha=None))
+    add("block-width=0", _sub(block, alpha=None, p=None, width="0", height="2"))
+    add("block-height=-2", _sub(block, alpha=None, p=None, width="0.3", height="-2"))
+    add("block-unknown-option", block + ["--foo", "1"])
+    add("block-extra-argument", block + ["extra"])
+    add("simulate-unknown-kind", ["simulate", "cube"] + MOTION)
+    add("unknown-command", ["overturn", "--alpha", "0.1"])
+    for name in BAD_RECORDS:
+        add(f"block-record-{name}", _sub(block, signal=None, period=None,
+                                         record=f"{{files}}/{name}"))
+    add("block-record-missing", _sub(block, signal=None, period=None, record="{tmp}/no.AT2"))
+    add("block-record-folder", _sub(block, signal=None, period=None, record="{files}/folder"))
+    add("block-units=furlong", _sub(block, signal=None, period=None,
+                                    record="{files}/good.txt", units="furlong"))
+    add("block-units-with-AT2", _sub(block, signal=None, period=None, record=REC, units="g"))
+    add("block-plot-missing-dir", _sub(block, plot="{tmp}/no/th.png"))
+    add("block-plot-is-folder", _sub(block, plot="{files}/folder"))
+    for v in ("0", "-0.1", "nan"):
+        add(f"frame-alpha={v}", _sub(SIM["frame"] + MOTION, alpha=v))
+    for v in ("-1", "nan"):
+        add(f"frame-mass-ratio={v}", _sub(SIM["frame"] + MOTION, mass_ratio=v))
+    add("frame-p=0", _sub(SIM["frame"] + MOTION, p="0"))
+    for v in ("0", "2", "nan"):
+        add(f"sdof-delta={v}", _sub(SIM["sdof"] + MOTION, delta=v))
+    for v in ("0", "-1", "inf"):
+        add(f"sdof-ap-min={v}", _sub(SIM["sdof"] + MOTION, ap_min=v))
+    add("sdof-p=-2", _sub(SIM["sdof"] + MOTION, p="-2"))
+    add("sdof-restitution=2", _sub(SIM["sdof"] + MOTION, restitution="2"))
+    fh = SIM["fourhinge"] + MOTION
+    for opt in ("span", "rise", "thickness"):
+        for v in ("0", "-1", "nan"):
+            add(f"fourhinge-{opt}={v}", _sub(fh, **{opt: v}))
+    add("fourhinge-shape=dome", _sub(fh, shape="dome"))
+    add("fourhinge-blocks=1", _sub(fh, blocks="1"))
+    add("fourhinge-blocks=-3", _sub(fh, blocks="-3"))
+    mdof = SIM["mdof"] + MOTION
+    add("mdof-no-arch", ["simulate", "mdof"] + MOTION)
+    for v in ("0", "2", "-5"):
+        add(f"mdof-blocks={v}", _sub(mdof, blocks=v))
+    for v in ("0", "-1"):
+        add(f"mdof-thickness={v}", _sub(mdof, thickness=v))
+    for v in ("1", "0", "nan"):
+        add(f"mdof-h-factor={v}", _sub(mdof, h_factor=v))
+    for v in ("0.1", "0"):
+        add(f"mdof-gap-tol={v}", _sub(mdof, gap_tol=v))
+    add("mdof-t-free=1e9", _sub(mdof, t_free="1e9"))
+    add("mdof-period=1e9", _sub(mdof, period="1e9"))
+    col = ["simulate", "mdof"] + MOTION
+    for v in (";", "a,b", "0.3,0", "0.3,-2", "0.3"):
+        add(f"mdof-column={v}", col + ["--column", v])
+
+    # --- animate: output, frames, magnification, limits
+    add("animate-out-png", _sub(ANIM, out="{tmp}/a.png"))
+    add("animate-out-missing-dir", _sub(ANIM, out="{tmp}/no/a.gif"))
+    add("animate-fps=0", _sub(ANIM, fps="0"))
+    add("animate-frames=1", _sub(ANIM, frames="1"))
+    for v in ("0.5", "nan", "inf"):
+        add(f"animate-magnify={v}", _sub(ANIM, magnify=v))
+    add("animate-t-free=1e9", _sub(ANIM, t_free="1e9"))
+    add("animate-period=1e9", _sub(ANIM, period="1e9"))
+    add("animate-no-out", _sub(ANIM, out=None))
+
+    # --- oas: grids, lists, systems, sweeps, Dask addresses, outputs
+    for v in ("1,,2", "a,b", ",", "0,1", "-1,2", "nan", "1;;2", "1e300"):
+        add(f"oas-p={v}", _sub(OAS, p=v))
+    add("oas-p-and-p-min", OAS + ["--p-min", "1", "--p-max", "2"])
+    add("oas-p-min>p-max", _sub(OAS, p=None, p_min="2", p_max="1"))
+    add("oas-p-min=0", _sub(OAS, p=None, p_min="0", p_max="1"))
+    add("oas-p-steps=1", _sub(OAS, p=None, p_min="1", p_max="2", p_steps="1"))
+    add("oas-no-p", _sub(OAS, p=None))
+    add("oas-ratio-steps=0", _sub(OAS, ratio_steps="0"))
+    add("oas-ratio-steps=1-with-max", _sub(OAS, ratio_steps="1", ratio_max="3"))
+    add("oas-ratio-min=-1", _sub(OAS, ratio_min="-1"))
+    add("oas-ratio-max=nan", _sub(OAS, ratio_max="nan"))
+    add("oas-ratio-min>max", _sub(OAS, ratio_min="4", ratio_max="2"))
+    for v in ("-1", "nan"):
+        add(f"oas-tol={v}", _sub(OAS, tol=v))
+    add("oas-system=cube", _sub(OAS, system="cube"))
+    add("oas-fourhinge-no-shape", _sub(OAS, system="fourhinge", alpha=None))
+    add("oas-sdof-no-delta", _sub(OAS, system="sdof", alpha=None, ap_min="1"))
+    add("oas-alpha=0", _sub(OAS, alpha="0"))
+    add("oas-restitution=1.5", _sub(OAS, restitution="1.5"))
+    for v in ("0", "-2"):
+        add(f"oas-workers={v}", _sub(OAS, workers=v))
+    for v in ("foo", "tcp://", "tcp://host:abc", "http://x:1", "tcp://:8786"):
+        add(f"oas-scheduler={v}", _sub(OAS, scheduler=v))
+    add("oas-scheduler-and-dask-workers",
+        _sub(OAS, scheduler="tcp://127.0.0.1:1", dask_workers="2"))
+    add("oas-dask-workers=0", _sub(OAS, dask_workers="0"))
+    add("oas-out-missing-dir", _sub(OAS, out="{tmp}/no/o.nc"))
+    add("oas-out-is-folder", _sub(OAS, out="{files}/folder"))
+    add("oas-plot-missing-dir", _sub(OAS, plot="{tmp}/no/o.png"))
+    add("oas-record-nan", _sub(OAS, signal=None, period=None, record="{files}/nan.txt"))
+    add("oas-cycles=1000000", _sub(OAS, signal="harmonic", cycles="1000000"))
+
+    # --- arch statics
+    for opt in ("span", "rise", "thickness"):
+        for v in ("0", "-1"):
+            add(f"arch-{opt}={v}", _sub(ARCH, **{opt: v}))
+    add("arch-shape=dome", _sub(ARCH, shape="dome"))
+    add("arch-no-thickness", _sub(ARCH, thickness=None))
+    add("arch-blocks=2", _sub(ARCH, blocks="2"))
+    add("arch-direction=0", _sub(ARCH, direction="0"))
+    add("arch-mass-model=bogus", _sub(ARCH, mass_model="bogus"))
+    add("arch-lambda-without-min-thickness", _sub(ARCH, **{"lambda": "0.1"}))
+    add("arch-min-thickness-lambda=nan", _sub(ARCH, thickness=None, **{"lambda": "nan"})
+        + ["--min-thickness"])
+    add("arch-min-thickness-lambda=-1", _sub(ARCH, thickness=None, **{"lambda": "-1"})
+        + ["--min-thickness"])
+    add("arch-min-thickness-with-thickness", ARCH + ["--min-thickness"])
+    add("arch-plot-missing-dir", _sub(ARCH, plot="{tmp}/no/a.png"))
+
+    # --- site OAS and design
+    add("site-no-records", _sub(SITE, records=None))
+    for name in ("empty.txt", "nan.txt", "binary.AT2", "third_column.txt"):
+        add(f"site-record-{name}", _sub(SITE, records=f"{{files}}/{name}"))
+    add("site-record-missing", _sub(SITE, records="{tmp}/none.AT2"))
+    add("site-percentile=150", _sub(SITE, percentile="150"))
+    add("site-ratio-steps=1", _sub(SITE, ratio_steps="1"))
+    add("site-p-min=0", _sub(SITE, p_min="0"))
+    add("site-alpha=0", _sub(SITE, alpha="0"))
+    add("site-out-missing-dir", _sub(SITE, out="{tmp}/no/s.nc"))
+    add("site-out-is-folder", _sub(SITE, out="{files}/folder"))
+    add("site-units=furlong", _sub(SITE, records="{files}/good.txt", units="furlong"))
+    add("site-no-out", _sub(SITE, out=None))
+    add("design-site-missing", _sub(DESIGN, site="{tmp}/none.nc"))
+    add("design-site-not-netcdf", _sub(DESIGN, site="{files}/plain.txt"))
+    add("design-site-folder", _sub(DESIGN, site="{files}/folder"))
+    add("design-thickness-rule=bogus", _sub(DESIGN, thickness_rule="bogus"))
+    add("design-curve=bogus", _sub(DESIGN, curve="bogus"))
+    for opt in ("span", "rise", "thickness"):
+        add(f"design-{opt}=0", _sub(DESIGN, **{opt: "0"}))
+    add("design-report-missing-dir", _sub(DESIGN, report="{tmp}/no/d.html"))
+
+    # --- reproduce
+    add("reproduce-out-is-file", ["reproduce", "--out", "{files}/plain.txt", "--quick"])
+    add("reproduce-no-out", ["reproduce", "--quick"])
+    return cases
+
+
+CASES = _cases()
+
+
+def test_there_are_at_least_100_cases():
+    assert len(CASES) >= 100
+
+
+@pytest.mark.parametrize("args", CASES)
+def test_bad_input_is_one_line_exit_2(args, files, tmp_path):
+    argv = [a.replace("{tmp}", str(tmp_path)).replace("{files}", str(files)) for a in args]
+    before = sorted(files.rglob("*"))
+    res = runner.invoke(app, argv)
+    lines = res.stderr.strip().splitlines()
+    assert res.exit_code == 2, (res.exit_code, res.stdout, res.stderr, res.exception)
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    assert "Traceback" not in res.stderr + res.stdout
+    assert list(tmp_path.iterdir()) == [], "a file was left behind"
+    assert sorted(files.rglob("*")) == before, "a file was left behind"
+
+
+def test_bad_input_in_a_real_process(tmp_path):
+    """The real entry point (not CliRunner): same one line, status 2, no warning."""
+    args = ["simulate", "block", "--alpha", "0.1", "--p", "2", "--signal", "harmonic",
+            "--period", "1", "--cycles", "1000000", "--ratio", "2"]
+    code = "import sys; from rockarch.cli import app; sys.argv[0] = 'rockarch'; app()"
+    env = {**os.environ, "PYTHONWARNINGS": "default"}
+    res = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+                         cwd=tmp_path, env=env, timeout=60)
+    assert res.returncode == 2 and res.stdout == ""
+    assert len(res.stderr.strip().splitlines()) == 1 and res.stderr.startswith("error: ")
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,148 @@
+"""The README's command-line examples: every command parses, and what the commands print
+is what the README shows (every number; ``...`` in the README leaves a part out).
+
+The quick commands (``# ~3 s`` or less, needing no file of another command) run in
+``make test``; all of them, in order and in one folder, in ``make test-all``.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import click
+import pytest
+import typer
+from typer.testing import CliRunner
+
+from rockarch.cli import app
+from rockarch.records import bundled_record_path
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+DATA = bundled_record_path(180).parent
+runner = CliRunner()
+
+
+def examples(text: str) -> list[tuple[list[str], str, float]]:
+    """(argv without "rockarch", expected output, rough seconds) of every ``$ rockarch``
+    line in the README's console blocks; continuation lines end with a backslash."""
+    out = []
+    for block in re.findall(r"```console\n(.*?)```", text, flags=re.DOTALL):
+        lines = block.splitlines()
+        i = 0
+        while i < len(lines):
+            if not lines[i].startswith("$ "):
+                i += 1
+                continue
+            cmd = lines[i][2:]
+            while cmd.rstrip().endswith("\\"):
+                i += 1
+                cmd = cmd.rstrip()[:-1] + " " + lines[i]
+            i += 1
+            expected = []
+            while i < len(lines) and lines[i].strip() and not lines[i].startswith("$ "):
+                expected.append(lines[i].rstrip())
+                i += 1
+            m = re.search(r"#\s*~(\d+(?:\.\d+)?)\s*s", cmd)
+            argv = shlex.split(cmd, comments=True)
+            assert argv[0] == "rockarch", cmd
+            out.append((argv[1:], "\n".join(expected), float(m.group(1)) if m else 1e9))
+    return out
+
+
+EXAMPLES = examples(README.read_text(encoding="utf-8"))
+#: Quick examples that need no file written by another one (``design --site site.nc``).
+QUICK = [e for e in EXAMPLES if e[2] <= 3 and "--site" not in e[0]]
+
+
+def _argv(argv: list[str]) -> list[str]:
+    """The README's relative paths to the bundled records, made absolute."""
+    return [str(DATA) + a[len("src/rockarch/data"):] if a.startswith("src/rockarch/data")
+            else a for a in argv]
+
+
+def matches(expected: str, actual: str) -> bool:
+    """Every character equal, except that ``...`` stands for anything (also lines)."""
+    parts = [re.escape(p) for p in expected.split("...")]
+    rx = ".*?".join(parts)
+    actual = "\n".join(line.rstrip() for line in actual.strip().splitlines())
+    return re.fullmatch(rx, actual, flags=re.DOTALL) is not None
+
+
+def test_matching_rule():
+    assert matches('{"b": [null, ...], "c": 4.00703125}', '{"b": [null, 1, 2], "c": 4.00703125}')
+    assert not matches('{"c": 4.0078125}', '{"c": 4.00703125}')
+    assert matches("a\n...\nz", "a\nb\nc\nz")
+
+
+def test_every_example_parses_and_says_its_run_time():
+    assert len(EXAMPLES) >= 10 and len(QUICK) >= 6
+    root = typer.main.get_command(app)
+    for argv, expected, seconds in EXAMPLES:
+        assert expected, f"no output shown for rockarch {' '.join(argv)}"
+        assert seconds < 1e9, f"no '# ~N s' run time for rockarch {' '.join(argv)}"
+        cmd, rest = root, list(argv)
+        while isinstance(cmd, click.Group):
+            cmd = cmd.get_command(None, rest.pop(0))
+            assert cmd is not None, argv
+        cmd.make_context("rockarch", _argv(rest))  # unknown options or values raise here
+
+
+def _run(argv: list[str], expected: str) -> None:
+    res = runner.invoke(app, _argv(argv))
+    assert res.exit_code == 0, (argv, res.stderr, res.exception)
+    assert matches(expected, res.stdout), (
+        f"rockarch {' '.join(argv)}\nREADME:\n{expected}\nprinted:\n{res.stdout}")
+
+
+@pytest.mark.parametrize("argv, expected", [e[:2] for e in QUICK],
+                         ids=[" ".join(e[0][:2]) for e in QUICK])
+def test_quick_examples_print_what_the_readme_shows(argv, expected, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    _run(argv, expected)
+
+
+@pytest.mark.slow  # ~60 s: every example, including the record OAS, site OAS and animation
+def test_all_examples_in_order(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for argv, expected, _ in EXAMPLES:
+        _run(argv, expected)
+
+
+def test_python_block_runs_and_shows_what_it_computes():
+    """The README's Python block runs as written, and the values its comments show are the
+    computed ones (same rule as the console block: the README is the output of the code)."""
+    block = re.search(r"```python\n(.*?)```", README.read_text(encoding="utf-8"),
+                      flags=re.DOTALL).group(1)
+    ns: dict = {}
+    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - the README's own example
+    shown = {"4.00703125": ns["ds"].boundary.values[-1]}
+    assert shown["4.00703125"] == 4.00703125
+    d = ns["r"].to_dict()
+    for key in ("impacts", "open_joints_max"):
+        assert re.search(rf'"{key}": {d[key]}\b', block), (key, d[key])
+    assert f'"overturned": {d["overturned"]}' in block
+    assert f'"max_slip": {d["max_slip"]:.2g}' in block
+
+
+def _normalised_report(text: str, out: str) -> str:
+    """A demo report without what differs between runs: its folder and the timing."""
+    text = text.replace(out, "OUT")
+    return re.sub(r"computed in \d+(\.\d+)? s", "computed in T s", text)
+
+
+@pytest.mark.slow  # ~60 s: the whole demo (make demo)
+def test_docs_demo_report_is_what_make_demo_writes(tmp_path):
+    """docs/demo/report.md (linked from the README) is what `make demo` writes now; rebuild
+    it with `.venv/bin/python examples/demo.py --out docs/demo`."""
+    root = README.parent
+    subprocess.run([sys.executable, str(root / "examples" / "demo.py"), "--out",
+                    str(tmp_path)], check=True, capture_output=True, cwd=tmp_path,
+                   timeout=900)
+    fresh = _normalised_report((tmp_path / "report.md").read_text(), str(tmp_path))
+    kept = _normalised_report((root / "docs" / "demo" / "report.md").read_text(),
+                              "docs/demo")
+    assert kept == fresh

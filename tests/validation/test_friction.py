@@ -1,0 +1,145 @@
+"""Coulomb friction in the MDOF engine (docs/theory.md §9): closed forms (Newmark's sliding
+block, the rock / slide / slide-rock onset), energy, and the no-sliding limit mu → large."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rockarch import mdof, motion
+from rockarch.constants import GAP_TOL, G
+from rockarch.mdof import builders as bd
+
+
+def onset_mu(a: float, lam: float) -> float:
+    """Smallest mu for pure rocking of a block (lambda = B/H) from rest under a constant
+    ground acceleration a·g ≥ lambda·g (docs/theory.md Eq. (9.6))."""
+    return (a * (1 + 4 * lam**2) + 3 * lam) / (4 + lam**2 + 3 * lam * a)
+
+
+def newmark_slip(a: float, mu: float, t: float) -> float:
+    """Total slip of a block that can only slide (Eq. (9.5)): step pulse a [m/s²], t [s]."""
+    v = (a - mu * G) * t
+    return 0.5 * (a - mu * G) * t**2 + v**2 / (2 * mu * G)
+
+
+def test_newmark_sliding_block():
+    # B/H = 1 > a/g = 0.5 > mu = 0.1: the block only slides (issue value: 0.392 m)
+    assert newmark_slip(0.5 * G, 0.1, 0.2) == pytest.approx(0.392, abs=5e-4)
+    blk = bd.with_friction(mdof.single_block(1.0, 1.0), 0.1)
+    r = mdof.simulate(blk, motion.step(0.5 * G, 0.2), t_free=2.0)
+    # Moreau–Jean is exact for piecewise-constant accelerations except at the two stick/
+    # slip transitions, each inside one step: an O(h·v) error, h·v ≈ 1.2 mm·... = 1e-3
+    # relative at h·p = 0.005 (measured: 6e-4)
+    assert r.max_slip == pytest.approx(newmark_slip(0.5 * G, 0.1, 0.2), rel=2e-3)
+    assert r.max_rotation_ratio < 1e-9 and not r.overturned
+    assert r.sliding_contacts_max == 1 and r.lcp_failures == 0
+    # it comes to rest when the slip ends: v / (mu·g) = 0.8 s after the pulse
+    assert r.t_end == pytest.approx(1.0, abs=0.01)
+    d = r.to_dict()
+    assert d["max_slip"] == r.max_slip and d["sliding_contacts_max"] == 1
+
+
+def _mode(lam: float, a: float, mu: float) -> str:
+    """What a block (B/H = lam) does in its first 0.05 s under a constant a·g."""
+    blk = bd.with_friction(mdof.single_block(lam, 1.0), mu)
+    r = mdof.simulate(blk, motion.step(a * G, 0.05), t_free=0.0)
+    assert r.lcp_failures == 0
+    # thresholds: every mode below moves by > 2e-5 m or 1e-3·alpha in 0.05 s at the
+    # chosen distances (0.002) from the boundaries; the engine's solve is exact to ~1e-12
+    slides = r.max_slip > 1e-6
+    rocks = r.max_rotation_ratio > 1e-6
+    return {(False, False): "rest", (True, False): "slide", (False, True): "rock",
+            (True, True): "slide-rock"}[(slides, rocks)]
+
+
+def test_onset_formula_values():
+    # the issue's values for lambda = 0.25
+    assert onset_mu(0.3, 0.25) == pytest.approx(0.2624, abs=5e-5)
+    assert onset_mu(0.5, 0.25) == pytest.approx(0.3099, abs=5e-5)
+    assert onset_mu(0.25, 0.25) == pytest.approx(0.25)  # continuous with mu = lambda
+
+
+@pytest.mark.parametrize("a", [0.3, 0.4, 0.5, 0.8])
+def test_rock_slide_rock_boundary(a):
+    lam = 0.25
+    mu0 = onset_mu(a, lam)
+    assert _mode(lam, a, mu0 + 0.002) == "rock"
+    assert _mode(lam, a, mu0 - 0.002) == "slide-rock"
+
+
+def test_rest_and_pure_sliding():
+    lam = 0.25
+    assert _mode(lam, 0.2, 0.3) == "rest"  # a < min(mu, lambda)
+    assert _mode(lam, 0.24, 0.5) == "rest"
+    assert _mode(lam, 0.3, 0.2) == "slide"  # mu < lambda, a > mu
+    assert _mode(lam, 0.8, 0.2) == "slide"  # mu < lambda: never rocks, whatever a
+
+
+@pytest.mark.parametrize("mu, assembly, amp", [
+    (0.26, mdof.single_block(0.3, 1.2), 0.8),
+    (0.26, mdof.column([(0.3, 1.0), (0.25, 0.8)]), 0.8),
+    (0.22, mdof.column([(0.3, 1.0), (0.25, 0.8)]), 0.6),
+])
+def test_energy_never_increases_with_friction_and_impacts(mu, assembly, amp):
+    # blocks that rock, slide and impact during a sine pulse (T = 0.3 s); in the free motion
+    # after it the energy may only drop (friction, impacts). Bound: a corner counts as
+    # touching within GAP_TOL·d (d: thinnest joint), so closing such a gap can return at
+    # most M·g·GAP_TOL·d; the no-friction chain stepper shows the same (measured ≤ 3e-5 of
+    # M·g·d with and without friction)
+    a = bd.with_friction(assembly, mu)
+    r = mdof.simulate(a, motion.sine(1.0, 0.3).scaled_to_pga(amp * G), t_free=2.0)
+    assert r.lcp_failures == 0 and not r.overturned
+    assert r.sliding_contacts_max >= 1 and r.impacts >= 3 and r.max_slip > 1e-3
+    e = r.energy[r.t >= 0.3]
+    assert e[0] - e[-1] > 0.3 * abs(e[0])  # friction and impacts did dissipate
+    gain = np.max(e[1:] - np.minimum.accumulate(e)[:-1])
+    assert gain <= GAP_TOL * a.mass.sum() * G * a.thickness.min()
+
+
+def _maps(assembly, signal, p, ratio):
+    m = motion.pulse(signal, 1.0, 1.0)
+    ref = mdof.simulate_batch(assembly, m, p, ratio)
+    fr = mdof.simulate_batch(bd.with_friction(assembly, 1e3), m, p, ratio)
+    assert fr.extras["lcp_failures"].sum() == 0
+    return ref, fr
+
+
+@pytest.mark.parametrize("signal", ["sine", "step"])
+def test_large_mu_reproduces_no_sliding_maps(signal):
+    # mu = 1000: no joint can slide (the friction cone holds any shear the structure can
+    # carry), so the collapse maps equal those of the no-sliding chain stepper cell for cell
+    pp, rr = np.meshgrid(np.linspace(1.0, 6.0, 4), np.linspace(1.0, 4.0, 6), indexing="ij")
+    for assembly in (mdof.block_from_p_alpha(2.0, 0.2), mdof.column([(0.3, 1.0), (0.2, 0.8)])):
+        ref, fr = _maps(assembly, signal, pp, rr)
+        assert ref.overturned.any() and not ref.overturned.all()
+        np.testing.assert_array_equal(fr.overturned, ref.overturned)
+        assert np.all(fr.extras["sliding_contacts_max"] == 0)
+
+
+def _two_blocks_on_the_ground(mu: float) -> mdof.Assembly:
+    """Two separate unit blocks on the ground: a contact graph that is not a chain."""
+    one = mdof.single_block(1.0, 1.0)
+    shift = np.array([2.0, 0.0])
+    return mdof.Assembly(
+        name="two blocks", kind="assembly", mass=np.repeat(one.mass, 2),
+        inertia=np.repeat(one.inertia, 2), centroid=np.vstack([one.centroid, one.centroid + shift]),
+        corners=np.stack([one.corners[0], one.corners[0] + shift]),
+        normal=np.repeat(one.normal, 2, axis=0),
+        polygons=(one.polygons[0], one.polygons[0] + shift), ap_min=mu * G, p_ref=one.p_ref,
+        delta_ref=one.delta_ref, size=one.size, body_a=[-1, -1], body_b=[0, 1], mu=[mu, mu])
+
+
+def test_newmark_on_the_general_stepper():
+    # the sliding block of test_newmark_sliding_block, twice, in a non-chain assembly (the
+    # Gauss–Seidel solve): each block slides exactly as alone
+    a = _two_blocks_on_the_ground(0.1)
+    assert not a.is_chain
+    r = mdof.simulate(a, motion.step(0.5 * G, 0.2), t_free=2.0)
+    assert r.lcp_failures == 0
+    assert r.max_slip == pytest.approx(newmark_slip(0.5 * G, 0.1, 0.2), rel=2e-3)
+    assert r.sliding_contacts_max == 2
+    assert math.isclose(r.max_rotation_ratio, 0.0, abs_tol=1e-9)
+    assert np.allclose(r.q[:, 1, 0] - r.q[:, 0, 0], 2.0, atol=1e-9)
