@@ -39,12 +39,17 @@ TOL = 0.05
 def cases():
     """(name, assembly, ground motion [m/s²]) of the comparisons."""
     blk = bd.with_friction(mdof.single_block(0.5, 2.0), 0.2)  # lambda = 0.25 > mu
-    yield ("sliding-rocking block B=0.5 H=2 mu=0.2, sine 0.4 g T=1 s", blk,
-           motion.pulse("sine", 0.4 * G, 1.0))
-    bridge = bd.bridge(catenary(10.0, 3.0, 0.25), 10, pier_height=3.0, pier_width=1.5,
-                       mu=0.6)
-    yield ("10-voussoir catenary arch on piers 3x1.5 m mu=0.6, sine 1.3 ap,min T=1 s",
-           bridge, motion.pulse("sine", 1.3 * bridge.ap_min, 1.0))
+    yield ("sliding-rocking block B=0.5 H=2 mu=0.2, sine 0.8 g T=1 s", blk,
+           motion.pulse("sine", 0.8 * G, 1.0))
+    arch = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 10)
+    yield ("10-voussoir catenary arch l=10 f=3 d=0.25, rigid supports, no sliding, sine "
+           "1.3 ap,min T=1 s", arch, motion.pulse("sine", 1.3 * arch.ap_min, 1.0))
+    for mu in (None, 0.6):
+        bridge = bd.bridge(catenary(10.0, 3.0, 0.25), 10, pier_height=3.0, pier_width=1.5,
+                           mu=mu)
+        label = "no sliding" if mu is None else f"mu={mu:g}"
+        yield (f"the same arch on piers 3x1.5 m (2 blocks each), {label}, sine 1.3 ap,min "
+               "T=1 s", bridge, motion.pulse("sine", 1.3 * bridge.ap_min, 1.0))
 
 
 def case_json(a, m, h: float, t_end: float) -> dict:
