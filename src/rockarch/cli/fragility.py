@@ -47,6 +47,12 @@ def fragility(
     rise_over_span: float = typer.Option(None, help="fourhinge/mdof: f/l."),
     thickness_over_span: float = typer.Option(None, help="fourhinge/mdof: d/l."),
     blocks: int = typer.Option(None, help="fourhinge/mdof: voussoirs."),
+    column: str = cc.COLUMN_OPT, friction: float = cc.FRICTION_OPT,
+    spans: int = cc.SPANS_OPT, pier_height: float = cc.PIER_H_OPT,
+    pier_width: float = cc.PIER_W_OPT, pier_blocks: int = cc.PIER_BLOCKS_OPT,
+    abutments: bool = cc.ABUT_OPT, wall: str = cc.WALL_OPT, block: str = cc.BLOCK_OPT,
+    colonnade: int = cc.COLONNADE_OPT, bay: float = cc.BAY_OPT,
+    lintel: float = cc.LINTEL_OPT, assembly: Path = cc.ASSEMBLY_OPT,
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
@@ -89,7 +95,8 @@ def fragility(
                          rise_over_span=rise_over_span,
                          thickness_over_span=thickness_over_span, blocks=blocks,
                          mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
-                         restitution=restitution, t_free=t_free)
+                         restitution=restitution, t_free=t_free,
+                         **cc.mdof_structure(locals()))
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
