@@ -74,7 +74,7 @@ def _check_contract(folder, tmp_path):
 
 @pytest.mark.parametrize("extra, msg", [
     (["--im", "sa"], "--im sa needs --period"),
-    (["--im", "pgd"], "--im must be one of"),
+    (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa'"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
     (["--level", "95"], "--level must lie in (0, 1)"),
