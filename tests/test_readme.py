@@ -112,6 +112,22 @@ def test_all_examples_in_order(tmp_path, monkeypatch):
         _run(argv, expected)
 
 
+def test_python_block_runs_and_shows_what_it_computes():
+    """The README's Python block runs as written, and the values its comments show are the
+    computed ones (same rule as the console block: the README is the output of the code)."""
+    block = re.search(r"```python\n(.*?)```", README.read_text(encoding="utf-8"),
+                      flags=re.DOTALL).group(1)
+    ns: dict = {}
+    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - the README's own example
+    shown = {"4.00703125": ns["ds"].boundary.values[-1]}
+    assert shown["4.00703125"] == 4.00703125
+    d = ns["r"].to_dict()
+    for key in ("impacts", "open_joints_max"):
+        assert re.search(rf'"{key}": {d[key]}\b', block), (key, d[key])
+    assert f'"overturned": {d["overturned"]}' in block
+    assert f'"max_slip": {d["max_slip"]:.2g}' in block
+
+
 def _normalised_report(text: str, out: str) -> str:
     """A demo report without what differs between runs: its folder and the timing."""
     text = text.replace(out, "OUT")

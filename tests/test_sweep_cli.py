@@ -3,6 +3,7 @@
 
 import json
 import os
+import signal
 import socket
 import subprocess
 import sys
@@ -113,3 +114,26 @@ def test_site_oas_resumes_from_the_store_and_matches_without_it(tmp_path):
             {k: v for k, v in first.items() if k != "out"}
     with pytest.raises(AssertionError):
         _run([*args, "--out", str(tmp_path / "d.nc"), "--workers", "0"])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("pool", [["--workers", "2"], ["--dask-workers", "2"]])
+def test_ctrl_c_is_one_line_without_leak_warnings(tmp_path, pool):
+    """Ctrl-C in the middle of a pooled sweep: exit 130 and the one line 'error:
+    interrupted'; no traceback from a worker being started, no 'leaked semaphore' warning
+    from the resource tracker, no notice from distributed."""
+    store = tmp_path / "store"
+    exe = os.path.join(os.path.dirname(sys.executable), "rockarch")
+    args = [exe, "oas", "--alpha", "0.2", "--record", REC, "--p-min", "1", "--p-max", "4",
+            "--p-steps", "96", "--ratio-steps", "41", "--no-progress", "--store", str(store),
+            *pool]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 240
+    while not list(store.rglob("*.npz")):  # interrupt once the workers run
+        assert proc.poll() is None, proc.stderr.read()
+        assert time.monotonic() < deadline
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and out == ""
+    assert err == "error: interrupted\n"

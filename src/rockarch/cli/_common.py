@@ -20,6 +20,7 @@ from rockarch.arch.geometry import SHAPES
 from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.motion import SIGNALS, GroundMotion, pulse
 from rockarch.records import read_record
+from rockarch.sweep import default_store_dir
 from rockarch.systems import KINDS
 
 
@@ -200,8 +201,11 @@ WORKERS_OPT = typer.Option(None, help="Local worker processes (default: every co
                            "sweeps run in-process).")
 SCHEDULER_OPT = typer.Option(None, help="Run on a running Dask scheduler tcp://HOST:PORT.")
 DASK_WORKERS_OPT = typer.Option(None, help="Start a local Dask cluster of N workers.")
-STORE_OPT = typer.Option(None, help="Resumable store of finished chunks (default: "
-                         "$ROCKARCH_CACHE or ~/.cache/rockarch).")
+STORE_OPT = typer.Option(None, help="Folder of the resumable store of finished chunks. "
+                         "Default: $ROCKARCH_CACHE, else $XDG_CACHE_HOME/rockarch, else "
+                         f"~/.cache/rockarch (here: {default_store_dir()}). Set "
+                         "ROCKARCH_CACHE or give --store DIR to move it; 'rockarch cache "
+                         "info' / 'rockarch cache clear' show and empty it.")
 NO_STORE_OPT = typer.Option(False, "--no-store", help="Keep no store (always recompute).")
 
 
