@@ -125,6 +125,11 @@ def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
     return pulse(signal.value, 1.0, period, cycles)
 
 
+#: Largest number of values of one grid axis (--p-steps, --ratio-steps): a 10⁴ × 10⁴ map
+#: is 10⁸ simulations, days of computing; larger values only exhaust the memory.
+MAX_STEPS_AXIS = 10_000
+
+
 def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
            ) -> np.ndarray:
     """The p values of --p LIST or --p-min/--p-max/--p-steps [1/s]."""
@@ -138,6 +143,8 @@ def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
         raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
     if p_steps < 2:
         raise ValueError("--p-steps must be >= 2")
+    if p_steps > MAX_STEPS_AXIS:
+        raise ValueError(f"--p-steps must be <= {MAX_STEPS_AXIS} (a grid axis), got {p_steps}")
     return np.round(np.linspace(p_min, p_max, p_steps), 12)
 
 
@@ -150,6 +157,9 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     that 1.7 prints as 1.7, not 1.7000000000000002). One step is --ratio-min alone."""
     if ratio_steps < 1:
         raise ValueError("--ratio-steps must be >= 1")
+    if ratio_steps > MAX_STEPS_AXIS:
+        raise ValueError(f"--ratio-steps must be <= {MAX_STEPS_AXIS} (a grid axis), got "
+                         f"{ratio_steps}")
     if ratio_steps == 1:
         if ratio_max is not None and ratio_max != ratio_min:
             raise ValueError("--ratio-steps 1 computes only --ratio-min: leave out --ratio-max "
