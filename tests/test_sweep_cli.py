@@ -183,6 +183,22 @@ def test_grid_limit_of_the_library_and_of_a_site():
     assert sweep.MAX_SIMULATIONS == 10_000_000
 
 
+def test_the_simulation_limit_can_be_raised_and_lowered(monkeypatch):
+    from rockarch.sweep import limits
+
+    monkeypatch.setenv("ROCKARCH_MAX_SIMULATIONS", "1e8")
+    assert limits.check_simulations(50_000_000, "x") == 50_000_000
+    monkeypatch.setenv("ROCKARCH_MAX_SIMULATIONS", "10")
+    res = runner.invoke(app, ["oas", "--alpha", "0.2", "--signal", "sine", "--period", "0.5",
+                              "--p", "1,2", "--ratio-steps", "6", "--no-store"])
+    assert res.exit_code == 2 and res.stderr.strip().endswith(
+        "above the limit of 10 per command: use fewer --p-steps/--ratio-steps, split the p "
+        "range over several commands, or raise ROCKARCH_MAX_SIMULATIONS")
+    monkeypatch.setenv("ROCKARCH_MAX_SIMULATIONS", "lots")
+    with pytest.raises(ValueError, match="ROCKARCH_MAX_SIMULATIONS must be a positive"):
+        limits.check_simulations(1, "x")
+
+
 def test_site_oas_flags_a_record_given_twice(tmp_path):
     from rockarch.records import bundled_record_path
 
