@@ -109,7 +109,7 @@ def plan_frames(resp, fps: int, max_frames: int, magnify: float) -> FramePlan:
     moved = np.concatenate(_outlines(resp, resp.q[last])) - base
     disp = float(np.abs(moved).max())
     final = magnify
-    if disp > 0 and disp * magnify < FINAL_VISIBLE * size:
+    if disp > 1e-12 * size and disp * magnify < FINAL_VISIBLE * size:  # else: at rest
         final = max(magnify, _nice_floor(FINAL_VISIBLE * size / disp))
     return FramePlan(idx, np.maximum(np.round(dur, -1), 20.0), magnify, final)
 
