@@ -74,7 +74,7 @@ def _check_contract(folder, tmp_path):
 
 @pytest.mark.parametrize("extra, msg", [
     (["--im", "sa"], "--im sa needs --period"),
-    (["--im", "pgd"], "--im must be one of"),
+    (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa'"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
     (["--level", "95"], "--level must lie in (0, 1)"),
@@ -147,3 +147,14 @@ def test_design_needs_site_or_records(folder):
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
                               "--thickness", "1"])
     assert res.exit_code == 2 and "give either --site FILE or --records DIR" in res.stderr
+
+
+@pytest.mark.slow
+def test_mdof_structure_options(folder):
+    res = runner.invoke(app, ["fragility", "--system", "mdof", "--column", "0.4,2;0.4,2",
+                              "--p", "2", "--records", str(folder), "--no-store",
+                              "--ratio-max", "4", "--ratio-steps", "4", "--tol", "0.2",
+                              "--t-free", "2", "--bootstrap", "0", "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["system"] == "2-block column" and len(out["points"]) == 2
