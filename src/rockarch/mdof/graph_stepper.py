@@ -6,12 +6,14 @@ support moving with it). The normal of joint k is attached to body ``ba[k]``; it
 points to body ``bb[k]``: the gap of corner c is the distance of b's corner from a's face
 line, so a joint may slide along a's face. Per joint: two corner rows and one tangential
 row at the corner in contact (the smaller gap), with the joint's Coulomb cone (μ finite) or
-the no-slip constraint (μ = ∞, the chain model). Contact solve by non-smooth Gauss–Seidel
-(:mod:`rockarch.mdof.graph_solver`); positions stabilised by a few Gauss–Seidel sweeps of
-the chain stepper's projection (closed contacts that carried an impulse close exactly,
-velocities untouched, never adding energy). Collapse, impacts and records as in the chain
-stepper; in addition the largest tangential offset of any joint (``max_slip``) and the most
-joints sliding at once.
+the no-slip constraint (μ = ∞, the chain model). Contact solve: exact, a box-constrained QP
+on the banded W iterated on the friction bounds (:func:`banded_friction`; docs/theory.md
+Eq. (9.4)), or non-smooth Gauss–Seidel for very wide graphs
+(:mod:`rockarch.mdof.graph_solver`). Positions stabilised by one Gauss–Seidel sweep per step
+of the chain stepper's projection (closed contacts that carried an impulse close, sticking
+joints keep their slip; velocities untouched, never adding energy). Collapse, impacts and
+records as in the chain stepper; in addition the largest tangential offset of any joint
+(``max_slip``) and the most joints sliding at once.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from rockarch.mdof.kinematics import advance, cumint, cumint_knots
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
-PROJECT_SWEEPS = 3
+PROJECT_SWEEPS = 1
 #: Fixed-point iterations on the joints' normal impulses (chains with friction) before a
 #: step counts as a failure.
 MAX_OUTER = 50
