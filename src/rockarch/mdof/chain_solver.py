@@ -24,7 +24,9 @@ TOL_LCP = 1e-7
 
 @nb.njit(cache=True)
 def band_solve(n, kb, rhs, lb, out):
-    """Cholesky of the banded SPD matrix kb (lower band) into lb, then solve for rhs."""
+    """Cholesky of the banded SPD matrix kb (lower band, half-bandwidth kb.shape[1] − 1)
+    into lb, then solve for rhs."""
+    KD = kb.shape[1] - 1  # noqa: N806 (the module's KD for chains)
     for i in range(n):
         for d in range(KD, -1, -1):
             j = i - d
@@ -56,6 +58,7 @@ def band_solve(n, kb, rhs, lb, out):
 @nb.njit(cache=True)
 def wmul(n, wb, lam, i):
     """(W·lam)_i from the lower band."""
+    KD = wb.shape[1] - 1  # noqa: N806
     s = wb[i, 0] * lam[i]
     for d in range(1, KD + 1):
         j = i - d
@@ -135,10 +138,12 @@ def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
 
 @nb.njit(cache=True)
 def box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l):
-    """min ½ΛᵀWΛ + Λᵀq subject to lo ≤ Λ ≤ hi (banded W, eps on its diagonal) by the same
+    """min ½ΛᵀWΛ + Λᵀq subject to lo ≤ Λ ≤ hi (W banded, any half-bandwidth wb.shape[1] − 1,
+    eps added to its diagonal) by the same
     primal active-set method as :func:`lcp`: ``st`` (warm start in, working set out) is 0
     for a free row, 1 held at lo, 2 held at hi; a row with lo = hi is always held. Returns
     the number of banded solves (negative if it did not finish)."""
+    kd = wb.shape[1] - 1
     for i in range(n):
         if lo[i] == hi[i]:
             st[i] = 1
@@ -147,7 +152,7 @@ def box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l):
     for it in range(_MAX_PIVOTS):
         for i in range(n):
             s = -q[i]
-            for d in range(KD + 1):
+            for d in range(kd + 1):
                 j = i - d
                 if j < 0:
                     kb[i, d] = 0.0
@@ -156,7 +161,7 @@ def box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l):
                 else:
                     kb[i, d] = 1.0 if d == 0 else 0.0
             if st[i] == 0:
-                for d in range(1, KD + 1):  # held rows enter the free rows' right-hand side
+                for d in range(1, kd + 1):  # held rows enter the free rows' right-hand side
                     j = i - d
                     if j >= 0 and st[j] != 0:
                         s -= wb[i, d] * lam[j]

@@ -22,7 +22,7 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
-from rockarch.mdof.chain_solver import EPS_REG, KD, box_qp
+from rockarch.mdof.chain_solver import EPS_REG, box_qp
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
 from rockarch.mdof.graph_solver import NSGS_TOL, apply_impulse, joint_velocity, nsgs, solve3
 from rockarch.mdof.kinematics import advance, cumint, cumint_knots
@@ -33,17 +33,19 @@ PROJECT_SWEEPS = 3
 #: Fixed-point iterations on the joints' normal impulses (chains with friction) before a
 #: step counts as a failure.
 MAX_OUTER = 50
+#: Tolerance of that fixed point: the friction bounds in use repeat within FP_TOL of the
+#: largest joint impulse.
+FP_TOL = 1e-4
 
 
 @nb.njit(cache=True)
-def _point(j, x, y, ph, r):
-    """World point of the body-fixed offset r (j < 0: r is a ground point)."""
+def _point(j, x, y, cs, sn, r):
+    """World point of the body-fixed offset r (j < 0: r is a ground point) and the offset
+    turned with the body (cs, sn: cos and sin of every body's rotation)."""
     if j < 0:
         return r[0], r[1], 0.0, 0.0
-    c = math.cos(ph[j])
-    s = math.sin(ph[j])
-    ox = c * r[0] - s * r[1]
-    oy = s * r[0] + c * r[1]
+    ox = cs[j] * r[0] - sn[j] * r[1]
+    oy = sn[j] * r[0] + cs[j] * r[1]
     return x[j] + ox, y[j] + oy, ox, oy
 
 
@@ -52,14 +54,14 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
     Jacobian rows (3·nj, 3) w.r.t. bodies a and b; the rows are the exact gradients of the
     gaps (lever arms from each centroid to b's corner)."""
+    cs = np.cos(ph)
+    sn = np.sin(ph)
     for k in range(nj):
         a = ba[k]
         b = bb[k]
         if a >= 0:
-            c = math.cos(ph[a])
-            s = math.sin(ph[a])
-            nx = c * n0[k, 0] - s * n0[k, 1]
-            ny = s * n0[k, 0] + c * n0[k, 1]
+            nx = cs[a] * n0[k, 0] - sn[a] * n0[k, 1]
+            ny = sn[a] * n0[k, 0] + cs[a] * n0[k, 1]
         else:
             nx = n0[k, 0]
             ny = n0[k, 1]
@@ -67,8 +69,8 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
         ty = nx
         best = 0
         for cc in range(2):
-            pax, pay, _, _ = _point(a, x, y, ph, ra[k, cc])
-            pbx, pby, obx, oby = _point(b, x, y, ph, rb[k, cc])
+            pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, cc])
+            pbx, pby, obx, oby = _point(b, x, y, cs, sn, rb[k, cc])
             dx = pbx - pax
             dy = pby - pay
             gap[k, cc] = nx * dx + ny * dy
@@ -84,8 +86,8 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
                 ja[r, 0] = -nx
                 ja[r, 1] = -ny
                 ja[r, 2] = -(oax * ny - oay * nx)
-        pax, pay, _, _ = _point(a, x, y, ph, ra[k, best])
-        pbx, pby, obx, oby = _point(b, x, y, ph, rb[k, best])
+        pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, best])
+        pbx, pby, obx, oby = _point(b, x, y, cs, sn, rb[k, best])
         gap[k, 2] = tx * (pbx - pax) + ty * (pby - pay)
         r = 3 * k + 2
         jb[r, 0] = tx
@@ -130,32 +132,36 @@ def joint_blocks(nj, ba, bb, ja, jb, im, ii, eps, wl):
 
 
 @nb.njit(cache=True)
-def band_w(nj, ba, bb, ja, jb, im, ii, wl, wb):
-    """Lower band of W for a chain (joint k−1 and joint k share body bb[k−1] = ba[k]):
-    wb[i, d] = W[i, i − d], d = 0..KD; the diagonal blocks from ``wl``."""
-    for i in range(3 * nj):
-        ki = i // 3
-        for d in range(KD + 1):
-            j = i - d
-            wb[i, d] = 0.0
-            if j < 0:
-                continue
-            kj = j // 3
-            if ki == kj:
-                wb[i, d] = wl[ki, i - 3 * ki, j - 3 * kj]
-            elif ki == kj + 1:
-                b = bb[kj]
-                if b >= 0 and b == ba[ki]:
-                    wb[i, d] = (ja[i, 0] * jb[j, 0] + ja[i, 1] * jb[j, 1]) * im[b] \
-                        + ja[i, 2] * jb[j, 2] * ii[b]
+def band_w(m, ja, jb, im, ii, wb):
+    """Lower band of W = J·M⁻¹·Jᵀ, wb[i, d] = W[i, i − d] (d ≤ wb.shape[1] − 1, which the
+    joint ordering of :func:`rockarch.mdof.kernel_data.graph_model` guarantees): every body
+    adds the products of the rows of the joints it takes part in."""
+    wb[:] = 0.0
+    for j in range(m.mass.shape[0]):
+        for p in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
+            kp = m.inc_joint[p]
+            jp = ja if m.inc_side[p] == 0 else jb
+            for q in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
+                kq = m.inc_joint[q]
+                if kq > kp:
+                    continue
+                jq = ja if m.inc_side[q] == 0 else jb
+                for a in range(3):
+                    i = 3 * kp + a
+                    for b in range(3):
+                        r = 3 * kq + b
+                        if r <= i:
+                            wb[i, i - r] += (jp[i, 0] * jq[r, 0] + jp[i, 1] * jq[r, 1]) * im[j] \
+                                + jp[i, 2] * jq[r, 2] * ii[j]
 
 
 @nb.njit(cache=True)
-def chain_friction(m, ws, eps, tol_u, tol_l):
-    """Exact contact solve of a chain with friction (docs/theory.md §9): box-constrained QPs
+def banded_friction(m, ws, eps, tol_u, tol_l):
+    """Exact contact solve with friction (docs/theory.md §9): box-constrained QPs
     (|Λ_t| ≤ μ·s_k, Λ_n ≥ 0) by the banded active-set method, iterated on the joints'
-    normal sums s_k until they repeat within tol_l (then Λ solves the Coulomb problem
-    exactly). Returns the number of banded solves (negative: failed)."""
+    normal sums s_k until the bounds in use repeat and every sticking joint lies inside its
+    cone, within ``FP_TOL`` of the largest joint impulse (then Λ solves the Coulomb problem
+    to that tolerance). Returns the number of banded solves (negative: failed)."""
     nj = m.n0.shape[0]
     total = 0
     for _outer in range(MAX_OUTER):
@@ -168,6 +174,8 @@ def chain_friction(m, ws, eps, tol_u, tol_l):
                 ws.hi[3 * k + 2] = np.inf
             else:
                 b = m.mu[k] * max(ws.lam[3 * k] + ws.lam[3 * k + 1], 0.0)
+                if _outer >= 3:  # damped: the plain iteration may oscillate
+                    b = 0.5 * (b + ws.hi[3 * k + 2])
                 ws.lo[3 * k + 2] = -b
                 ws.hi[3 * k + 2] = b
         its = box_qp(3 * nj, ws.wb, ws.q, ws.lo, ws.hi, ws.st, ws.lam, ws.kb, ws.lb, ws.rhs,
@@ -175,12 +183,19 @@ def chain_friction(m, ws, eps, tol_u, tol_l):
         if its < 0:
             return -1 - total
         total += its
+        # converged when no bound in use moved and every sticking joint is inside its cone
         diff = 0.0
+        smax = 0.0
+        for k in range(nj):
+            smax = max(smax, ws.lam[3 * k] + ws.lam[3 * k + 1])
         for k in range(nj):
             if not math.isinf(m.mu[k]):
-                s = ws.lam[3 * k] + ws.lam[3 * k + 1]
-                diff = max(diff, abs(m.mu[k] * s - ws.hi[3 * k + 2]))
-        if diff <= tol_l:
+                b = m.mu[k] * (ws.lam[3 * k] + ws.lam[3 * k + 1])
+                if ws.st[3 * k + 2] != 0:
+                    diff = max(diff, abs(b - ws.hi[3 * k + 2]))
+                else:
+                    diff = max(diff, abs(ws.lam[3 * k + 2]) - b)
+        if diff <= max(tol_l, FP_TOL * smax):
             return total
     return -1 - total
 
@@ -188,8 +203,8 @@ def chain_friction(m, ws, eps, tol_u, tol_l):
 @nb.njit(cache=True)
 def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
     """Geometry at (x, y, ph), contact impulses for the free velocities (vx, vy, om), which
-    are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st. Chains: exact banded
-    solve (:func:`chain_friction`); other graphs: Gauss–Seidel sweeps. Returns the solver's
+    are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st. Exact banded solve
+    (:func:`banded_friction`), or Gauss–Seidel sweeps if the model says so. Returns the solver's
     iteration count (negative: failed)."""
     nj = m.n0.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, m.n0, ws.gap, ws.ja, ws.jb)
@@ -198,21 +213,20 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
             r = 3 * k + c
             ws.bias[r] = ws.gap[k, c] / hh if c < 2 and ws.gap[k, c] > gtol else 0.0
     d = np.empty(3)
-    if m.chain:
-        joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, 0.0, ws.wl)
-        band_w(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, ws.wl, ws.wb)
+    if m.banded:
+        band_w(m, ws.ja, ws.jb, ws.im, ws.ii, ws.wb)
         for k in range(nj):
             joint_velocity(k, m.ba, m.bb, ws.ja, ws.jb, ws.bias, vx, vy, om, d)
             for i in range(3):
                 ws.q[3 * k + i] = d[i]
-        its = chain_friction(m, ws, eps, tol_u, tol_l)
+        its = banded_friction(m, ws, eps, tol_u, tol_l)
     else:
         joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
     for k in range(nj):
         for i in range(3):
             d[i] = ws.lam[3 * k + i]
         apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, vx, vy, om)
-    if m.chain:
+    if m.banded:
         return its
     return nsgs(nj, m.ba, m.bb, ws.ja, ws.jb, ws.wl, ws.bias, m.mu, ws.im, ws.ii, vx, vy, om,
                 ws.lam, ws.case, tol_u, tol_l)
@@ -302,10 +316,11 @@ class Work(NamedTuple):
 def _work(m, scale, lam, case):
     nj = m.n0.shape[0]
     n = 3 * nj
+    kd = m.kd if m.banded else 0
     return Work(m.ra * scale, m.rb * scale, 1.0 / m.mass, 1.0 / (m.inertia * scale * scale),
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
-                np.zeros(n), lam, case, np.zeros((n, KD + 1)), np.zeros((n, KD + 1)),
-                np.zeros((n, KD + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+                np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
+                np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
                 np.zeros(n), np.zeros(n, dtype=np.int8))
 
 

@@ -10,6 +10,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from rockarch.mdof.assembly import Assembly
 
@@ -57,24 +59,70 @@ class GraphModel(NamedTuple):
     rb: np.ndarray  # (nj, 2, 2) corners relative to body b (absolute for the ground)
     n0: np.ndarray  # (nj, 2) reference normals (turn with body a)
     mu: np.ndarray  # (nj,) friction coefficients (inf: no sliding)
-    chain: bool  # joint k joins body k-1 to body k: banded exact contact solve
+    banded: bool  # exact banded contact solve (else Gauss–Seidel)
+    kd: int  # half-bandwidth of W in this joint order
+    inc_ptr: np.ndarray  # (nb + 1,) body j takes part in joints inc_joint[inc_ptr[j]:inc_ptr[j+1]]
+    inc_joint: np.ndarray
+    inc_side: np.ndarray  # 0: as body a, 1: as body b
+    order: np.ndarray  # (nj,) model joint i is the assembly's joint order[i]
     thick_min: float
     delta_ref: float
     g: float
 
 
+#: Largest half-bandwidth of W solved by the banded exact solve (cost n·kd² per
+#: factorisation); wider graphs use Gauss–Seidel.
+KD_MAX = 200
+
+
+def _half_band(order: np.ndarray, pairs: np.ndarray) -> int:
+    pos = np.empty(order.size, dtype=np.int64)
+    pos[order] = np.arange(order.size)
+    return int(3 * np.abs(pos[pairs[:, 0]] - pos[pairs[:, 1]]).max() + 2)
+
+
+def joint_order(assembly: Assembly) -> tuple[np.ndarray, int]:
+    """A joint order with a narrow band and the half-bandwidth of W in it (3 rows per
+    joint): chains keep theirs; other graphs take the narrowest of reverse Cuthill–McKee
+    on the joints-sharing-a-body graph and the joints sorted by height or by abscissa."""
+    body_a, body_b = np.asarray(assembly.body_a), np.asarray(assembly.body_b)
+    nj = body_a.size
+    pairs = []
+    for j in range(assembly.n_blocks):
+        ks = np.flatnonzero((body_a == j) | (body_b == j))
+        pairs += [(a, b) for a in ks for b in ks if a != b]
+    if not pairs:
+        return np.arange(nj), 2
+    p = np.array(pairs)
+    if assembly.is_chain:
+        return np.arange(nj), _half_band(np.arange(nj), p)
+    adj = csr_matrix((np.ones(len(p)), (p[:, 0], p[:, 1])), shape=(nj, nj))
+    mid = np.asarray(assembly.corners, dtype=float).mean(axis=1)
+    cands = [np.asarray(reverse_cuthill_mckee(adj, symmetric_mode=True), dtype=np.int64),
+             np.lexsort((mid[:, 0], mid[:, 1])), np.lexsort((mid[:, 1], mid[:, 0]))]
+    return min(((o, _half_band(o, p)) for o in cands), key=lambda c: c[1])
+
+
 def graph_model(assembly: Assembly) -> GraphModel:
     """The general stepper's input: the contact graph (body_a, body_b) and mu per joint."""
-    ba = np.ascontiguousarray(assembly.body_a, dtype=np.int64)
-    bb = np.ascontiguousarray(assembly.body_b, dtype=np.int64)
+    order, kd = joint_order(assembly)
+    ba = np.ascontiguousarray(np.asarray(assembly.body_a, dtype=np.int64)[order])
+    bb = np.ascontiguousarray(np.asarray(assembly.body_b, dtype=np.int64)[order])
     cen = np.asarray(assembly.centroid, dtype=float)
-    corners = np.asarray(assembly.corners, dtype=float)
+    corners = np.asarray(assembly.corners, dtype=float)[order]
+    inc = sorted([(int(b), k, 0) for k, b in enumerate(ba) if b >= 0]
+                 + [(int(b), k, 1) for k, b in enumerate(bb) if b >= 0])
+    ptr = np.searchsorted([i[0] for i in inc], np.arange(assembly.n_blocks + 1))
 
     def rel(bodies):
         return np.ascontiguousarray(corners - np.where(bodies[:, None, None] >= 0,
                                                        cen[bodies][:, None, :], 0.0))
 
     return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb, rel(ba),
-                      rel(bb), _f(assembly.normal), _f(assembly.mu), assembly.is_chain,
+                      rel(bb), _f(np.asarray(assembly.normal)[order]),
+                      _f(np.asarray(assembly.mu)[order]), kd <= KD_MAX, kd,
+                      np.ascontiguousarray(ptr, dtype=np.int64),
+                      np.array([i[1] for i in inc], dtype=np.int64),
+                      np.array([i[2] for i in inc], dtype=np.int64), order,
                       float(assembly.thickness.min()), float(assembly.delta_ref),
                       float(assembly.g))

@@ -93,9 +93,9 @@ def _motion_arrays(motion: GroundMotion | None):
 def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: int
           ) -> tuple[int, int]:
     """Time steps of a simulation and the recording stride, known before anything is
-    allocated: at most :func:`rockarch.limits.max_mdof_steps` steps (else ValueError), a
-    history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES` (every k-th step recorded
-    above it; the simulation itself is unchanged)."""
+    allocated (docs/theory.md Eq. (8.7)): at most :func:`rockarch.limits.max_mdof_steps`
+    steps (else ValueError), a history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES`
+    (every k-th step recorded above it; the simulation itself is unchanged)."""
     need = t_end / h
     if not need <= limits.max_mdof_steps():
         raise limits.too_many(f"an MDOF simulation of {t_end:.6g} s at h = {h:.3g} s", need,
@@ -138,6 +138,7 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
         model = graph_model(assembly)
         out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
                      out_q, out_s, out_e)
+        out_s[:, model.order] = out_s.copy()  # back to the assembly's joint numbers
     st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide = out
     c0 = model.c0
     # prepend the initial state
