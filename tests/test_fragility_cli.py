@@ -141,6 +141,7 @@ def test_design_with_records(tmp_path):
     assert saved.sizes["record"] == 2 and "simplified" in saved
     page = (tmp_path / "r.html").read_text()
     assert "Fragility of the replacement" in page and "--records" in page
+    assert "Response spectra of the records" in page
 
 
 def test_design_needs_site_or_records(folder):
