@@ -1,6 +1,7 @@
-"""Benchmark: the MDOF model (issue 5) against its targets and a plain reference.
+"""Benchmark: the MDOF model against its targets and a plain reference.
 
-Run:  .venv/bin/python benchmarks/mdof.py          (≈ 2–3 min on 2 cores)
+Run:  .venv/bin/python benchmarks/mdof.py                 (≈ 5–8 min on 2 cores)
+      .venv/bin/python benchmarks/mdof.py friction graphs (only parts 5 and 6)
 
 1. one simulation of a 20-voussoir catenary arch (l = 10 m, f = 3 m, d = 0.25 m) on the first
    5 s of El Centro 1940 (PGA = ratio·ap,min, ratio 1.0…2.0, no free time), with history:
@@ -10,7 +11,14 @@ Run:  .venv/bin/python benchmarks/mdof.py          (≈ 2–3 min on 2 cores)
 3. cost scaling with N = 10, 20, 40, 80 voussoirs (the case of 1);
 4. reference: the single block (p = 2, alpha = 0.2) on the same 5 s by the MDOF kernel and
    by scipy's solve_ivp on Housner's equation with events (benchmarks/block_oas.py), same
-   runs, same verdicts.
+   runs, same verdicts;
+5. friction: the case of 1 with mu = 0.5 (and mu = 1000, no joint can slide) against the
+   frictionless chain stepper in the same run (target: ≤ 2x);
+6. general contact graphs, 5 s of El Centro at 0.5·ap,min (the structure stays up, every
+   step is simulated): a two-span bridge on piers, walls of 14 and ~200 blocks (target for
+   200 blocks: ≤ 2 s); µs per step and per step and block, against pymunk (the test
+   oracle's model, tests/validation/pymunk_oracle.py: dt = 2e-4 s, 60 iterations) on the
+   same structures over 0.5 s.
 """
 
 from __future__ import annotations
@@ -18,6 +26,7 @@ from __future__ import annotations
 import math
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -25,9 +34,11 @@ import numpy as np
 from rockarch import mdof, motion, spectra, systems
 from rockarch.arch import catenary
 from rockarch.block import housner_restitution
+from rockarch.mdof import builders as bd
 from rockarch.records import el_centro
 
 sys.path.insert(0, str(Path(__file__).parent))
+sys.path.insert(1, str(Path(__file__).parent.parent))
 from block_oas import reference_simulation  # noqa: E402
 
 
@@ -51,9 +62,68 @@ def time_runs(assembly, rec, ratios, reps=3):
     return np.array(times), np.array(steps), np.array(over)
 
 
+def friction(rec, arch) -> None:
+    a20 = mdof.arch_assembly(arch, 20)
+    ratios = np.linspace(1.0, 2.0, 6)
+    mdof.simulate(bd.with_friction(a20, 0.5), rec.scaled(0.5), t_free=0.0)  # JIT
+    t0, st0, _ = time_runs(a20, rec, ratios)
+    print("5. friction, the case of 1 (ratios 1.0…2.0, best of 3, same run):")
+    print("| joints | median per simulation [ms] | µs per step | vs no friction |")
+    print("|---|---|---|---|")
+    print(f"| no sliding (chain stepper) | {1e3 * np.median(t0):.1f} | "
+          f"{1e6 * np.sum(t0) / np.sum(st0):.1f} | 1 |")
+    for mu in (1e3, 0.5):
+        a = bd.with_friction(a20, mu)
+        a = replace(a, ap_min=a20.ap_min)  # the same motions as the reference
+        t, st, _ = time_runs(a, rec, ratios)
+        print(f"| mu = {mu:g} | {1e3 * np.median(t):.1f} | {1e6 * np.sum(t) / np.sum(st):.1f}"
+              f" | {np.median(t / t0):.2f}x |")
+
+
+def pymunk_us_per_step(a, seconds=0.5):
+    try:
+        from tests.validation import pymunk_oracle as po
+    except ImportError:  # pymunk is a test-only dependency
+        return math.nan
+    dt = 2e-4
+    t0 = time.perf_counter()
+    po.run(a, lambda t: 0.5 * a.ap_min * math.sin(2 * math.pi * t), seconds, dt=dt)
+    return 1e6 * (time.perf_counter() - t0) / round(seconds / dt)
+
+
+def graphs(rec) -> None:
+    cases = [("2-span bridge on piers (N = 10 per span)",
+              bd.bridge(catenary(10.0, 3.0, 0.25), 10, spans=2, pier_height=3.0,
+                        pier_width=1.0)),
+             ("wall 4 x 3 (mu = 0.6)", bd.wall(4, 3, 0.4, 0.2, mu=0.6)),
+             ("wall 10 x 20 (mu = 0.6)", bd.wall(10, 20, 0.4, 0.2, mu=0.6))]
+    print("6. general contact graphs, 5 s of El Centro at 0.5·ap,min (one run each):")
+    print("| structure | blocks | joints | run [s] | steps | µs per step | µs per step and "
+          "block | pymunk µs per step | pymunk µs per step and block | failures |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for name, a in cases:
+        m = rec.scaled(0.5 * a.ap_min / rec.pga)
+        mdof.simulate(a, rec.scaled(1e-3), t_free=0.0)  # JIT
+        t0 = time.perf_counter()
+        r = mdof.simulate(a, m, t_free=0.0)
+        wall = time.perf_counter() - t0
+        us = 1e6 * wall / r.steps
+        pm = pymunk_us_per_step(a)
+        print(f"| {name} | {a.n_blocks} | {a.n_joints} | {wall:.2f} | {r.steps} | {us:.0f} | "
+              f"{us / a.n_blocks:.1f} | {pm:.0f} | {pm / a.n_blocks:.1f} | "
+              f"{r.lcp_failures} |")
+
+
 def main() -> None:
     rec = first_seconds(el_centro(), 5.0)
     arch = catenary(10.0, 3.0, 0.25)
+    only = set(sys.argv[1:])
+    if only:
+        if "friction" in only:
+            friction(rec, arch)
+        if "graphs" in only:
+            graphs(rec)
+        return
     ratios = np.linspace(1.0, 2.0, 11)
     a20 = mdof.arch_assembly(arch, 20)
     mdof.simulate(a20, rec.scaled(0.5), t_free=0.0)  # JIT / cache load
@@ -100,6 +170,8 @@ def main() -> None:
     print(f"4. single block (p = 2, alpha = 0.2), 5 s of El Centro, {ratios_b.size} ratios: "
           f"MDOF kernel {1e3 * t_m:.2f} ms, solve_ivp reference {1e3 * t_r:.1f} ms "
           f"(median): {t_r / t_m:.0f}x; same verdict in {agree}/{ratios_b.size}")
+    friction(rec, arch)
+    graphs(rec)
 
 
 if __name__ == "__main__":

@@ -48,7 +48,7 @@ __all__ = ["CONTINUOUS_BLOCKS", "MASS_MODELS", "SHAPES", "Arch", "catenary", "ci
            "elliptical", "from_contour", "make_arch", "pointed", "polyline"]
 
 #: Names that lived in this module before it was split: still importable from here.
-_MOVED = {"voussoirs": "cutting", "Voussoirs": "cutting", "_polygon_props": "cutting",
+_MOVED = {"voussoirs": "cutting", "Voussoirs": "cutting", "polygons_props": "cutting",
           "weighted_catenary": "funicular", "mass_per_horizontal_length": "funicular",
           "horizontal_weights": "weights", "catenary_parameter": "shapes"}
 

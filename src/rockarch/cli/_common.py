@@ -20,7 +20,7 @@ from rockarch.arch.geometry import SHAPES
 from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.motion import SIGNALS, GroundMotion, pulse
 from rockarch.records import read_record
-from rockarch.sweep import default_store_dir
+from rockarch.sweep import check_steps, default_store_dir
 from rockarch.systems import KINDS
 
 
@@ -138,6 +138,7 @@ def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
         raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
     if p_steps < 2:
         raise ValueError("--p-steps must be >= 2")
+    check_steps("--p-steps", p_steps)
     return np.round(np.linspace(p_min, p_max, p_steps), 12)
 
 
@@ -150,6 +151,7 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     that 1.7 prints as 1.7, not 1.7000000000000002). One step is --ratio-min alone."""
     if ratio_steps < 1:
         raise ValueError("--ratio-steps must be >= 1")
+    check_steps("--ratio-steps", ratio_steps)
     if ratio_steps == 1:
         if ratio_max is not None and ratio_max != ratio_min:
             raise ValueError("--ratio-steps 1 computes only --ratio-min: leave out --ratio-max "

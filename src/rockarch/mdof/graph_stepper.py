@@ -39,14 +39,13 @@ FP_TOL = 1e-4
 
 
 @nb.njit(cache=True)
-def _point(j, x, y, ph, r):
-    """World point of the body-fixed offset r (j < 0: r is a ground point)."""
+def _point(j, x, y, cs, sn, r):
+    """World point of the body-fixed offset r (j < 0: r is a ground point) and the offset
+    turned with the body (cs, sn: cos and sin of every body's rotation)."""
     if j < 0:
         return r[0], r[1], 0.0, 0.0
-    c = math.cos(ph[j])
-    s = math.sin(ph[j])
-    ox = c * r[0] - s * r[1]
-    oy = s * r[0] + c * r[1]
+    ox = cs[j] * r[0] - sn[j] * r[1]
+    oy = sn[j] * r[0] + cs[j] * r[1]
     return x[j] + ox, y[j] + oy, ox, oy
 
 
@@ -55,14 +54,14 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
     Jacobian rows (3·nj, 3) w.r.t. bodies a and b; the rows are the exact gradients of the
     gaps (lever arms from each centroid to b's corner)."""
+    cs = np.cos(ph)
+    sn = np.sin(ph)
     for k in range(nj):
         a = ba[k]
         b = bb[k]
         if a >= 0:
-            c = math.cos(ph[a])
-            s = math.sin(ph[a])
-            nx = c * n0[k, 0] - s * n0[k, 1]
-            ny = s * n0[k, 0] + c * n0[k, 1]
+            nx = cs[a] * n0[k, 0] - sn[a] * n0[k, 1]
+            ny = sn[a] * n0[k, 0] + cs[a] * n0[k, 1]
         else:
             nx = n0[k, 0]
             ny = n0[k, 1]
@@ -70,8 +69,8 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
         ty = nx
         best = 0
         for cc in range(2):
-            pax, pay, _, _ = _point(a, x, y, ph, ra[k, cc])
-            pbx, pby, obx, oby = _point(b, x, y, ph, rb[k, cc])
+            pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, cc])
+            pbx, pby, obx, oby = _point(b, x, y, cs, sn, rb[k, cc])
             dx = pbx - pax
             dy = pby - pay
             gap[k, cc] = nx * dx + ny * dy
@@ -87,8 +86,8 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
                 ja[r, 0] = -nx
                 ja[r, 1] = -ny
                 ja[r, 2] = -(oax * ny - oay * nx)
-        pax, pay, _, _ = _point(a, x, y, ph, ra[k, best])
-        pbx, pby, obx, oby = _point(b, x, y, ph, rb[k, best])
+        pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, best])
+        pbx, pby, obx, oby = _point(b, x, y, cs, sn, rb[k, best])
         gap[k, 2] = tx * (pbx - pax) + ty * (pby - pay)
         r = 3 * k + 2
         jb[r, 0] = tx

@@ -75,33 +75,37 @@ class GraphModel(NamedTuple):
 KD_MAX = 200
 
 
-def joint_order(body_a: np.ndarray, body_b: np.ndarray, n_blocks: int) -> tuple[np.ndarray,
-                                                                                  int]:
-    """A joint order with a narrow band (reverse Cuthill–McKee on the joints-sharing-a-body
-    graph; chains keep theirs) and the half-bandwidth of W in it (3 rows per joint)."""
+def _half_band(order: np.ndarray, pairs: np.ndarray) -> int:
+    pos = np.empty(order.size, dtype=np.int64)
+    pos[order] = np.arange(order.size)
+    return int(3 * np.abs(pos[pairs[:, 0]] - pos[pairs[:, 1]]).max() + 2)
+
+
+def joint_order(assembly: Assembly) -> tuple[np.ndarray, int]:
+    """A joint order with a narrow band and the half-bandwidth of W in it (3 rows per
+    joint): chains keep theirs; other graphs take the narrowest of reverse Cuthill–McKee
+    on the joints-sharing-a-body graph and the joints sorted by height or by abscissa."""
+    body_a, body_b = np.asarray(assembly.body_a), np.asarray(assembly.body_b)
     nj = body_a.size
     pairs = []
-    for j in range(n_blocks):
+    for j in range(assembly.n_blocks):
         ks = np.flatnonzero((body_a == j) | (body_b == j))
         pairs += [(a, b) for a in ks for b in ks if a != b]
     if not pairs:
         return np.arange(nj), 2
     p = np.array(pairs)
-    is_chain = np.array_equal(body_a, np.arange(nj) - 1)
-    if is_chain:
-        order = np.arange(nj)
-    else:
-        adj = csr_matrix((np.ones(len(p)), (p[:, 0], p[:, 1])), shape=(nj, nj))
-        order = np.asarray(reverse_cuthill_mckee(adj, symmetric_mode=True), dtype=np.int64)
-    pos = np.empty(nj, dtype=np.int64)
-    pos[order] = np.arange(nj)
-    return order, int(3 * np.abs(pos[p[:, 0]] - pos[p[:, 1]]).max() + 2)
+    if assembly.is_chain:
+        return np.arange(nj), _half_band(np.arange(nj), p)
+    adj = csr_matrix((np.ones(len(p)), (p[:, 0], p[:, 1])), shape=(nj, nj))
+    mid = np.asarray(assembly.corners, dtype=float).mean(axis=1)
+    cands = [np.asarray(reverse_cuthill_mckee(adj, symmetric_mode=True), dtype=np.int64),
+             np.lexsort((mid[:, 0], mid[:, 1])), np.lexsort((mid[:, 1], mid[:, 0]))]
+    return min(((o, _half_band(o, p)) for o in cands), key=lambda c: c[1])
 
 
 def graph_model(assembly: Assembly) -> GraphModel:
     """The general stepper's input: the contact graph (body_a, body_b) and mu per joint."""
-    order, kd = joint_order(np.asarray(assembly.body_a), np.asarray(assembly.body_b),
-                            assembly.n_blocks)
+    order, kd = joint_order(assembly)
     ba = np.ascontiguousarray(np.asarray(assembly.body_a, dtype=np.int64)[order])
     bb = np.ascontiguousarray(np.asarray(assembly.body_b, dtype=np.int64)[order])
     cen = np.asarray(assembly.centroid, dtype=float)

@@ -33,6 +33,12 @@ from rockarch.sweep.executors import (
     run_chunk,
 )
 from rockarch.sweep.keys import STORE_FORMAT, chunk_key, code_digest, source_digest
+from rockarch.sweep.limits import (
+    MAX_SIMULATIONS,
+    MAX_STEPS,
+    check_simulations,
+    check_steps,
+)
 from rockarch.sweep.run import run_chunks
 from rockarch.sweep.store import (
     Store,
@@ -44,7 +50,8 @@ from rockarch.sweep.store import (
     store_info,
 )
 
-__all__ = ["CONNECT_TIMEOUT", "MODES", "STORE_FORMAT", "Executor", "Store", "StoreInfo",
-           "StoreWarning", "as_executor", "as_store", "check_scheduler", "chunk_key",
-           "clear_store", "code_digest", "default_store_dir", "run_chunk", "run_chunks",
-           "source_digest", "store_info"]
+__all__ = ["CONNECT_TIMEOUT", "MAX_SIMULATIONS", "MAX_STEPS", "MODES", "STORE_FORMAT",
+           "Executor", "Store", "StoreInfo", "StoreWarning", "as_executor", "as_store",
+           "check_scheduler", "check_simulations", "check_steps", "chunk_key", "clear_store",
+           "code_digest", "default_store_dir", "run_chunk", "run_chunks", "source_digest",
+           "store_info"]

@@ -39,8 +39,16 @@ def _probe_scheduler(address: str, timeout: float) -> None:
 
     ``distributed.Client(timeout=...)`` bounds the TCP connect but not the handshake: a
     port that accepts and never answers would hang it. The probe runs on its own event loop
-    in a helper thread (so it also works under a running loop, e.g. Jupyter)."""
+    in a helper thread (so it also works under a running loop, e.g. Jupyter). A plain TCP
+    connect comes first: a closed port is refused at once (distributed would retry it until
+    the timeout)."""
     import asyncio
+    import socket
+
+    m = _ADDRESS.match(address)
+    if m is not None:
+        with socket.create_connection((m.group(2).strip("[]"), int(m.group(3))), timeout):
+            pass
     from concurrent.futures import ThreadPoolExecutor
     from concurrent.futures import TimeoutError as FutTimeout
 
@@ -255,6 +263,8 @@ class Executor:
             yield
         except Exception as exc:  # noqa: BLE001 - no scheduler, or not a Dask one
             why = (str(exc).splitlines() or [""])[0][:120] or type(exc).__name__
+            if not isinstance(exc, (OSError, TimeoutError)):  # e.g. garbage read as a frame
+                why = f"something answers there, but not a Dask scheduler ({why[:60]})"
             raise ValueError(f"cannot reach a Dask scheduler at {self.scheduler} "
                              f"(waited up to {CONNECT_TIMEOUT:g} s): {why}") from None
 
