@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= demo-output
 
-.PHONY: demo test test-all bench clean
+.PHONY: demo test test-all bench validate clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -29,6 +29,13 @@ bench: $(VENV)/.installed
 	$(BIN)/python benchmarks/arch_lp.py
 	$(BIN)/python benchmarks/fourhinge.py
 	$(BIN)/python benchmarks/sweep.py
+
+# Siconos oracle (docs/validation.md): installs python3-siconos for /usr/bin/python3 where
+# apt-get can, and skips cleanly where it cannot.
+validate: $(VENV)/.installed
+	-(apt-get update -qq && apt-get install -y -qq python3-siconos) >/dev/null 2>&1 \
+		|| echo "validate: could not install python3-siconos (not root or no apt)"
+	$(BIN)/python validation/siconos_compare.py
 
 clean:
 	rm -rf $(VENV) $(OUT) build src/*.egg-info

@@ -149,7 +149,7 @@ def _cases():
     add("block-record-folder", _sub(block, signal=None, period=None, record="{files}/folder"))
     add("block-units=furlong", _sub(block, signal=None, period=None,
                                     record="{files}/good.txt", units="furlong"))
-    add("block-units-with-AT2", _sub(block, signal=None, period=None, record=REC, units="g"))
+    add("block-units-with-AT2", _sub(block, signal=None, period=None, record=REC, units="cm/s2"))
     add("block-plot-missing-dir", _sub(block, plot="{tmp}/no/th.png"))
     add("block-plot-is-folder", _sub(block, plot="{files}/folder"))
     for v in ("0", "-0.1", "nan"):
@@ -205,6 +205,9 @@ def _cases():
     add("oas-p-min=0", _sub(OAS, p=None, p_min="0", p_max="1"))
     add("oas-p-steps=1", _sub(OAS, p=None, p_min="1", p_max="2", p_steps="1"))
     add("oas-no-p", _sub(OAS, p=None))
+    add("oas-p-steps=1e9", _sub(OAS, p=None, p_min="1", p_max="2", p_steps="1000000000"))
+    add("oas-ratio-steps=1e9", _sub(OAS, ratio_steps="1000000000"))
+    add("site-ratio-steps=1e9", _sub(SITE, ratio_steps="1000000000"))
     add("oas-ratio-steps=0", _sub(OAS, ratio_steps="0"))
     add("oas-ratio-steps=1-with-max", _sub(OAS, ratio_steps="1", ratio_max="3"))
     add("oas-ratio-min=-1", _sub(OAS, ratio_min="-1"))
@@ -268,6 +271,33 @@ def _cases():
     for opt in ("span", "rise", "thickness"):
         add(f"design-{opt}=0", _sub(DESIGN, **{opt: "0"}))
     add("design-report-missing-dir", _sub(DESIGN, report="{tmp}/no/d.html"))
+
+    # --- fragility, records, cache
+    frag = ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2", "--records",
+            REC, "--im", "pga", "--no-progress"]
+    for opt, v in (("im", "bogus"), ("p", "0"), ("p", "1e300"), ("alpha", "0"),
+                   ("records", "{tmp}/none/"), ("records", "{files}/nan.txt"),
+                   ("records", "{files}/binary.AT2"), ("level", "2"), ("bootstrap", "-1"),
+                   ("im-range", "a,b"), ("ratio-steps", "0"), ("tol", "nan"),
+                   ("plot", "{tmp}/no/f.png"), ("scheduler", "foo")):
+        add(f"fragility-{opt}={v.split('/')[-1]}", _sub(frag, **{opt.replace("-", "_"): v}))
+    add("fragility-im=sa-period=0", _sub(frag, im="sa", period="0"))
+    info = ["records", "info", REC]
+    add("records-info-missing", ["records", "info", "{tmp}/none.AT2"])
+    add("records-info-nan", ["records", "info", "{files}/nan.txt"])
+    add("records-info-third-column", ["records", "info", "{files}/third_column.txt"])
+    add("records-info-periods=1,,2", info + ["--periods", "1,,2"])
+    add("records-info-periods=-1", info + ["--periods", "-1"])
+    add("records-info-damping=-0.1", info + ["--damping", "-0.1"])
+    add("records-info-plot-missing-dir", info + ["--plot", "{tmp}/no/s.png"])
+    add("records-info-no-source", ["records", "info"])
+    synth = ["records", "synth", "{tmp}/synth"]
+    for opt, v in (("n", "0"), ("n", "-3"), ("dt", "0"), ("dt", "nan"), ("f-corner", "-1"),
+                   ("pulse-fraction", "1.5")):
+        add(f"records-synth-{opt}={v}", synth + [f"--{opt}", v])
+    add("records-synth-into-a-file", ["records", "synth", "{files}/plain.txt"])
+    add("cache-unknown-subcommand", ["cache", "purge"])
+    add("records-unknown-subcommand", ["records", "list"])
 
     # --- reproduce
     add("reproduce-out-is-file", ["reproduce", "--out", "{files}/plain.txt", "--quick"])

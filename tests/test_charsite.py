@@ -123,3 +123,18 @@ def test_site_file_holds_the_new_curves_and_design_reads_them(tmp_path):
         assert res.exit_code == 0, res.output
         js = json.loads(res.stdout)
         assert js["ratio"] == site.curve_at(ds, js["replacement"]["p"], curve)[0]
+
+
+def test_a_record_without_mean_period_is_left_out_of_the_normalised_curve():
+    from rockarch import site
+
+    m = ra.el_centro()
+    long = ra.GroundMotion(m.t[:500], m.a[:500], "El Centro 5 s")
+    tiny = ra.GroundMotion([0.0, 0.01, 0.02], [0.0, 1.0, 0.0], "20 ms blip")  # no Tm band
+    ds = site.site_oas([long, tiny], [2.0, 4.0], [1.0, 2.0, 3.0], t_free=1.0,
+                       progress=False, tol=0.0)
+    out = cs.characteristic(ds, [long, tiny])
+    assert np.isfinite(out["tm"].values[0]) and np.isnan(out["tm"].values[1])
+    assert np.isfinite(out["t_impulse"].values).all()
+    sk = cs.skill(out)
+    assert sk["raw"]["pairs"] >= 0 and sk["normalised"]["pairs"] <= 2

@@ -125,6 +125,8 @@ def test_im_choices():
         fr.im_per_unit_pga(m, "pgd")
     with pytest.raises(ValueError, match="needs --period"):
         fr.im_per_unit_pga(m, "sa")
+    with pytest.raises(ValueError, match="--period is for --im sa only"):
+        fr.im_per_unit_pga(m, "pgv", 0.5)
 
 
 @pytest.mark.parametrize("im, period", [("pgv", None), ("sa", 0.5)])

@@ -74,10 +74,18 @@ def _check_contract(folder, tmp_path):
 
 @pytest.mark.parametrize("extra, msg", [
     (["--im", "sa"], "--im sa needs --period"),
-    (["--im", "pgd"], "--im must be one of"),
+    (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa'"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
     (["--level", "95"], "--level must lie in (0, 1)"),
+    (["--ratio-max", "0.5"], "--ratio-max must be > 1"),
+    (["--p", "0"], "p must be a finite number > 0"),
+    (["--p", "nan"], "p must be a finite number > 0"),
+    (["--alpha", "-1"], "alpha"),
+    (["--im", "sa", "--period", "-1"], "--period must be a finite number > 0"),
+    (["--im-range", "0.1,x"], "--im-range"),
+    (["--bootstrap", "-1"], "--bootstrap must be >= 0"),
+    (["--records", "/nonexistent/folder"], "no such file or folder"),
     (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
 ])
 def test_bad_input_is_one_line(folder, extra, msg):
@@ -118,7 +126,8 @@ def test_design_with_records(tmp_path):
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
                               "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
                               "--curve", "simplified", "--json", "--report",
-                              str(tmp_path / "r.html")])
+                              str(tmp_path / "r.html"), "--save-site",
+                              str(tmp_path / "site.nc")])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     f = out["fragility"]
@@ -127,11 +136,27 @@ def test_design_with_records(tmp_path):
     assert f["pga_at_probability"]["probability"] == 0.1
     assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
+    from rockarch import site
+
+    saved = site.load(tmp_path / "site.nc")
+    assert saved.sizes["record"] == 2 and "simplified" in saved
     page = (tmp_path / "r.html").read_text()
     assert "Fragility of the replacement" in page and "--records" in page
+    assert "Response spectra of the records" in page
 
 
 def test_design_needs_site_or_records(folder):
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise", "5",
                               "--thickness", "1"])
     assert res.exit_code == 2 and "give either --site FILE or --records DIR" in res.stderr
+
+
+@pytest.mark.slow
+def test_mdof_structure_options(folder):
+    res = runner.invoke(app, ["fragility", "--system", "mdof", "--column", "0.4,2;0.4,2",
+                              "--p", "2", "--records", str(folder), "--no-store",
+                              "--ratio-max", "4", "--ratio-steps", "4", "--tol", "0.2",
+                              "--t-free", "2", "--bootstrap", "0", "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["system"] == "2-block column" and len(out["points"]) == 2

@@ -74,9 +74,9 @@ def test_two_outputs_on_one_file_are_refused(tmp_path):
 
 def test_directory_output_that_is_a_file(tmp_path):
     (tmp_path / "f").write_text("x")
-    with pytest.raises(ValueError, match="--out .*: is a file, not a folder"):
+    with pytest.raises(ValueError, match="--out .*: is a file, not a directory"):
         check_outputs((tmp_path / "f", "--out", "dir"))
-    with pytest.raises(ValueError, match=r"--store .*: .*/f is a file, not a folder"):
+    with pytest.raises(ValueError, match=r"--store .*: .*/f is a file, not a directory"):
         check_outputs((tmp_path / "f" / "sub", "--store", "dir"))
 
 

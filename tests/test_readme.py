@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import re
 import shlex
+import subprocess
+import sys
 from pathlib import Path
 
 import click
@@ -108,3 +110,39 @@ def test_all_examples_in_order(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     for argv, expected, _ in EXAMPLES:
         _run(argv, expected)
+
+
+def test_python_block_runs_and_shows_what_it_computes():
+    """The README's Python block runs as written, and the values its comments show are the
+    computed ones (same rule as the console block: the README is the output of the code)."""
+    block = re.search(r"```python\n(.*?)```", README.read_text(encoding="utf-8"),
+                      flags=re.DOTALL).group(1)
+    ns: dict = {}
+    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - the README's own example
+    shown = {"4.00703125": ns["ds"].boundary.values[-1]}
+    assert shown["4.00703125"] == 4.00703125
+    d = ns["r"].to_dict()
+    for key in ("impacts", "open_joints_max"):
+        assert re.search(rf'"{key}": {d[key]}\b', block), (key, d[key])
+    assert f'"overturned": {d["overturned"]}' in block
+    assert f'"max_slip": {d["max_slip"]:.2g}' in block
+
+
+def _normalised_report(text: str, out: str) -> str:
+    """A demo report without what differs between runs: its folder and the timing."""
+    text = text.replace(out, "OUT")
+    return re.sub(r"computed in \d+(\.\d+)? s", "computed in T s", text)
+
+
+@pytest.mark.slow  # ~60 s: the whole demo (make demo)
+def test_docs_demo_report_is_what_make_demo_writes(tmp_path):
+    """docs/demo/report.md (linked from the README) is what `make demo` writes now; rebuild
+    it with `.venv/bin/python examples/demo.py --out docs/demo`."""
+    root = README.parent
+    subprocess.run([sys.executable, str(root / "examples" / "demo.py"), "--out",
+                    str(tmp_path)], check=True, capture_output=True, cwd=tmp_path,
+                   timeout=900)
+    fresh = _normalised_report((tmp_path / "report.md").read_text(), str(tmp_path))
+    kept = _normalised_report((root / "docs" / "demo" / "report.md").read_text(),
+                              "docs/demo")
+    assert kept == fresh

@@ -143,7 +143,7 @@ def _simulate(case, contacts, sk, sn, plugin: str):
     osi.setConstraintActivationThreshold(1e-9 * float(case["size"]))
     osnspb = sk.FrictionContact(2, sn.SICONOS_FRICTION_2D_NSGS)
     so = osnspb.numericsSolverOptions()
-    so.dparam[sn.SICONOS_DPARAM_TOL] = 1e-14
+    so.dparam[sn.SICONOS_DPARAM_TOL] = float(os.environ.get("SICONOS_TOL", "1e-14"))
     so.iparam[sn.SICONOS_IPARAM_MAX_ITER] = 100000
     td = sk.TimeDiscretisation(0.0, h)
     sim = sk.TimeStepping(nsds, td, osi, osnspb)

@@ -167,7 +167,7 @@ def history_capacity(n_knots: int, duration: float, p: float, h_factor: float) -
     """Samples a recorded SDOF history is expected to need (one per RK4 step of at most
     h_factor/p and per knot, +10 % and 1024 for events), capped at
     :func:`rockarch.limits.max_samples` before anything is allocated (docs/theory.md
-    Eq. (8.1)); a longer history is decimated, the verdict is unchanged."""
+    Eq. (8.6)); a longer history is decimated, the verdict is unchanged."""
     need = n_knots + duration * p / h_factor * 1.1 + 1024
     return int(min(need, limits.max_samples()))
 

@@ -140,6 +140,14 @@ def normalised_curve(boundary, p, scale, percentile: float = 50.0, n: int = 120)
     return x, np.where(np.isfinite(curve), curve, np.nan)
 
 
+def _mean_period_or_nan(motion: GroundMotion, mean_period) -> float:
+    """Tm of the record, NaN where it is undefined (no Fourier amplitude in the band)."""
+    try:
+        return float(mean_period(motion))
+    except ValueError:
+        return float("nan")
+
+
 def characteristic(ds: xr.Dataset, motions, *, percentile: float | None = None
                    ) -> xr.Dataset:
     """A site OAS (:func:`rockarch.site.site_oas`) with the normalised and simplified
@@ -155,15 +163,20 @@ def characteristic(ds: xr.Dataset, motions, *, percentile: float | None = None
     q = float(ds.attrs.get("percentile", 50.0) if percentile is None else percentile)
     p = ds["p"].values
     alpha = float(ds.attrs.get("alpha", 0.0))
-    tm = np.array([mean_period(m) for m in motions])
+    tm = np.array([_mean_period_or_nan(m, mean_period) for m in motions])
     durs = [pulse_durations(m) for m in motions]
     t_i = np.array([d.t_impulse for d in durs])
     t_m = np.array([d.t_moment for d in durs])
     simple = np.stack([simplified_boundary(p, a, b, alpha) for a, b in zip(t_i, t_m,
                                                                             strict=True)])
-    x, curve = normalised_curve(ds["boundary"].values, p, tm, q)
-    tm_site = float(np.exp(np.mean(np.log(tm))))
-    site_norm = _log_interp(p * tm_site, x, np.where(np.isfinite(curve), curve, np.inf))
+    has_tm = np.isfinite(tm)
+    if has_tm.any():
+        x, curve = normalised_curve(ds["boundary"].values[has_tm], p, tm[has_tm], q)
+        tm_site = float(np.exp(np.mean(np.log(tm[has_tm]))))
+        site_norm = _log_interp(p * tm_site, x, np.where(np.isfinite(curve), curve, np.inf))
+    else:  # no record long enough for a mean period: no normalised curve
+        x, curve, tm_site = p.copy(), np.full(p.size, np.nan), float("nan")
+        site_norm = np.full(p.size, np.nan)
     out = ds.copy()
     out["tm"] = (("record",), tm)
     out["t_impulse"] = (("record",), t_i)
@@ -196,9 +209,13 @@ def skill(ds: xr.Dataset) -> dict:
     ok = np.isfinite(b)
     b_inf = np.where(ok, b, np.inf)
     raw = np.percentile(b_inf, 50, axis=0, method="lower")[None, :] * np.ones_like(b)
-    x, med = normalised_curve(b, p, ds["tm"].values, 50.0)
-    med = np.where(np.isfinite(med), med, np.inf)
-    norm = np.stack([_log_interp(p * s, x, med) for s in ds["tm"].values])
+    tm = ds["tm"].values
+    norm = np.full(b.shape, np.nan)
+    if np.isfinite(tm).any():
+        x, med = normalised_curve(b[np.isfinite(tm)], p, tm[np.isfinite(tm)], 50.0)
+        med = np.where(np.isfinite(med), med, np.inf)
+        norm = np.stack([_log_interp(p * s, x, med) if np.isfinite(s)
+                         else np.full(p.size, np.nan) for s in tm])
     out = {"pairs": int(ok.sum()), "censored_pairs": int((~ok).sum())}
     for name, pred in (("raw", raw), ("normalised", norm),
                        ("simplified", ds["simplified_record"].values)):
@@ -212,6 +229,9 @@ def log_skill(boundary, predicted) -> dict:
     b = np.asarray(boundary, dtype=float)
     pred = np.asarray(predicted, dtype=float)
     use = np.isfinite(b) & np.isfinite(pred)
+    if not use.any():
+        return {"dispersion": float("nan"), "bias": float("nan"), "safe": float("nan"),
+                "pairs": 0}
     lr = np.log(b[use] / pred[use])
     return {"dispersion": float(lr.std()), "bias": float(lr.mean()),
             "safe": float(np.mean(lr >= 0)), "pairs": int(use.sum())}

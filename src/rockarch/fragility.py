@@ -92,12 +92,10 @@ def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) 
     1 for ``pga``; PGV/PGA [s] for ``pgv``; Sa(period)/PGA for ``sa`` (5 % damping)."""
     if im not in IMS:
         raise ValueError(f"unknown intensity measure {im!r}: choose one of {', '.join(IMS)}")
-    if im == "pga":
-        if period is not None:
-            raise ValueError("--period is for --im sa only")
-        return 1.0
-    if im == "pgv" and period is not None:
+    if im != "sa" and period is not None:
         raise ValueError("--period is for --im sa only")
+    if im == "pga":
+        return 1.0
     if im == "sa" and period is None:
         raise ValueError("--im sa needs --period T (seconds)")
     if im == "sa" and not (math.isfinite(period) and period > 0):

@@ -13,8 +13,9 @@ Every time history is estimated before anything is allocated (docs/theory.md, Se
   engine runs to the end of the free motion); above it the command stops before any work
   with one line that names the limit and the environment variable that raises it.
 
-The defaults keep every command well below 2 GB of memory (measured in docs/theory.md,
-Sect. 8). Each limit can be raised (or lowered) with an environment variable.
+The estimates are docs/theory.md Eqs. (8.4)–(8.7); the defaults keep every command below
+~1 GB of memory (measured in docs/limits.md). Each limit can be raised (or lowered) with an
+environment variable.
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ MAX_MDOF_STEPS = 20_000_000
 MAX_HISTORY_BYTES = 400_000_000
 
 ENV = {"samples": "ROCKARCH_MAX_SAMPLES", "steps": "ROCKARCH_MAX_STEPS",
-       "mdof_steps": "ROCKARCH_MAX_MDOF_STEPS"}
+       "mdof_steps": "ROCKARCH_MAX_MDOF_STEPS",
+       "simulations": "ROCKARCH_MAX_SIMULATIONS"}  # rockarch.sweep.limits
 
 
 def _limit(key: str, default: int) -> int:

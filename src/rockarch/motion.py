@@ -102,7 +102,7 @@ class GroundMotion:
 def _smooth(ap: float, period: float, duration: float, func, name: str, n=None) -> GroundMotion:
     if n is None:
         need = max(math.ceil(duration / period * KNOTS_PER_PERIOD), 2)
-        if need + 1 > limits.max_samples():  # checked before anything is allocated
+        if need + 1 > limits.max_samples():  # docs/theory.md Eq. (8.4), before allocating
             raise limits.too_many(f"{name} ({KNOTS_PER_PERIOD} knots per period)", need + 1,
                                   "samples", limits.max_samples(), "use fewer --cycles")
     n_knots = max(int(math.ceil(duration / period * KNOTS_PER_PERIOD)), 2) if n is None else n

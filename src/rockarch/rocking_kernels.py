@@ -328,7 +328,7 @@ def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h
     decimated below that limit; at the limit the history is decimated (the verdict is the
     same). Returns (status, t_collapse, max_ratio, t_end, t, theta, theta', impact_times,
     stride); raises ValueError, before any work, if the run may need more than
-    :func:`rockarch.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.2))."""
+    :func:`rockarch.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.5))."""
     limit = limits.max_samples()
     # known before the work: at most one RK4 step per knot and per h_factor/p seconds
     need = tk.shape[0] + (tk[-1] - tk[0] + t_free) * p / h_factor

@@ -22,6 +22,7 @@ import xarray as xr
 from rockarch import __version__, spectra, systems
 from rockarch.constants import G_STANDARD, OAS_TOL
 from rockarch.motion import GroundMotion
+from rockarch.sweep.limits import check_simulations
 
 KIND = "rockarch-site-oas"
 FORMAT_VERSION = 1
@@ -42,12 +43,17 @@ def record_paths(paths) -> list[Path]:
 def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], list[str]]:
     """Read the records as a suite (:func:`rockarch.suite.read_suite`: the same folders and
     vertical components left out as every ``--records``) and their file hashes; reject
-    implausible PGAs (wrong units)."""
+    implausible PGAs (wrong units) and a record given twice (the same samples under two
+    names: it would count twice in the percentile)."""
     from rockarch.suite import read_suite
 
-    motions, hashes = [], []
+    motions, hashes, seen = [], [], {}
     for rec in read_suite(paths, units=units):
         path, m = Path(rec.path), rec.motion
+        first = seen.setdefault(m.fingerprint(), path)
+        if first != path:
+            raise ValueError(f"{path}: the same record as {first} (identical samples); a site "
+                             "counts each record once: leave one out")
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
             raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
@@ -74,6 +80,9 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
         raise ValueError("a site OAS needs at least one record")
     if not 0.0 <= float(percentile) <= 100.0:
         raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
+    n_p, n_r = np.size(p), np.size(ratio)
+    check_simulations(len(motions) * n_p * n_r,
+                      f"{len(motions)} records × {n_p} p × {n_r} ratio values")
     system = systems.BlockSystem(alpha=alpha, **system_kw)
     from rockarch import sweep
 

@@ -92,6 +92,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     if not (math.isfinite(tol) and tol >= 0):
         raise ValueError(f"tol must be a finite number >= 0, got {tol}")
     n_p, n_r = p.size, ratio.size
+    sweep.check_simulations(n_p * n_r, f"{n_p} p × {n_r} ratio values")
     over = np.zeros((n_p, n_r), dtype=bool)
     resp = np.zeros((n_p, n_r))
     rows = np.array_split(np.arange(n_p), min(max(chunks, 1), n_p))

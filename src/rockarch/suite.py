@@ -190,6 +190,10 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
     names = [f.name for f in files]
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
+        same = [f for f in files if f.name == dup[0]]
+        if len({f.resolve() for f in same}) == 1:
+            raise ValueError(f"{same[0]}: the same record is given twice (a file, or a file "
+                             "inside a folder also given): give each record once")
         raise ValueError(f"two records share the file name {dup[0]!r}: rename one")
     return files, metas
 

@@ -355,12 +355,14 @@ def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
 
     directory = Path(directory)
     check_output_dir(directory)
+    # the motions first: a bad n, dt or pulse fraction leaves no folder behind
+    motions = list(synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
+                                     pulse_fraction=pulse_fraction))
     directory.mkdir(parents=True, exist_ok=True)
     paths, lines = [], []
     keys = list(RDKParameters.__dataclass_fields__)
     pulse_keys = [f"pulse_{k}" for k in MPPulse.__dataclass_fields__]
-    for m in synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
-                               pulse_fraction=pulse_fraction):
+    for m in motions:
         path = write_at2(directory / f"{m.name}.AT2", m,
                          event=f"Synthetic RDK08 seed {int(seed)}", station=m.name,
                          component="H")

@@ -197,3 +197,16 @@ def test_supports_move_with_the_ground():
     # without sliding its corner cannot slide up the support's face: nothing moves
     with pytest.raises(ValueError, match="no rocking mechanism"):
         bd.from_polygons(blk, supports=sup)
+
+
+def test_trilithon_mechanism_and_drawing(tmp_path):
+    from rockarch.mdof.collapse_plot import plot_collapse
+
+    tri = bd.colonnade(2, 0.3, 2.0, 1.0, 0.4)
+    c = statics.collapse(tri)
+    # the frame mechanism: both columns rotate alike, the lintel translates without turning
+    assert np.allclose(np.abs(c.velocity[:2, 2]), 1.0, atol=1e-6)
+    assert abs(c.velocity[2, 2]) < 1e-6 and c.moving.all()
+    assert np.sum(c.opening) == 2 * 2  # one base corner and one top corner per column
+    out = plot_collapse(tri, tmp_path / "m.png", c)
+    assert out.stat().st_size > 5000

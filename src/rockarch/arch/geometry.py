@@ -24,6 +24,7 @@ Mass models (``Arch.mass_model``):
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
@@ -45,6 +46,18 @@ from rockarch.arch.weights import HorizontalWeights
 
 __all__ = ["CONTINUOUS_BLOCKS", "MASS_MODELS", "SHAPES", "Arch", "catenary", "circular",
            "elliptical", "from_contour", "make_arch", "pointed", "polyline"]
+
+#: Names that lived in this module before it was split: still importable from here.
+_MOVED = {"voussoirs": "cutting", "Voussoirs": "cutting", "polygons_props": "cutting",
+          "weighted_catenary": "funicular", "mass_per_horizontal_length": "funicular",
+          "horizontal_weights": "weights", "catenary_parameter": "shapes"}
+
+
+def __getattr__(name: str):
+    if name in _MOVED:
+        return getattr(importlib.import_module(f"rockarch.arch.{_MOVED[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 MASS_MODELS = ("voussoir", "axis", "weights")
 CONTINUOUS_BLOCKS = 2000  # voussoirs of the "continuous" (critical optimal) model

@@ -8,6 +8,7 @@ they compose nothing themselves.
 
 from rockarch.cli import (  # noqa: F401 - importing a module registers its commands
     archcmd,
+    cache,
     fragility,
     oas,
     records,

@@ -20,6 +20,7 @@ from rockarch.arch.geometry import SHAPES
 from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.motion import SIGNALS, GroundMotion, pulse
 from rockarch.records import read_record
+from rockarch.sweep import check_steps, default_store_dir
 from rockarch.systems import KINDS
 
 
@@ -113,9 +114,11 @@ def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
     if record is not None and signal is not None:
         raise ValueError("give either --record or --signal/--period, not both")
     if record is not None:
-        if units is not None and record.suffix.lower() == ".at2":
-            raise ValueError(f"{record}: a PEER .AT2 file states its own units; leave out "
-                             "--units (it applies to two-column records)")
+        if record.suffix.lower() == ".at2":
+            if units not in (None, "g"):
+                raise ValueError(f"{record}: a PEER .AT2 file is in units of g; --units "
+                                 f"{units} contradicts it (leave --units out)")
+            units = None  # --units g agrees with the file's own statement
         return read_record(record, units=units)
     if signal is None:
         raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
@@ -137,6 +140,7 @@ def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
         raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
     if p_steps < 2:
         raise ValueError("--p-steps must be >= 2")
+    check_steps("--p-steps", p_steps)
     return np.round(np.linspace(p_min, p_max, p_steps), 12)
 
 
@@ -149,6 +153,7 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     that 1.7 prints as 1.7, not 1.7000000000000002). One step is --ratio-min alone."""
     if ratio_steps < 1:
         raise ValueError("--ratio-steps must be >= 1")
+    check_steps("--ratio-steps", ratio_steps)
     if ratio_steps == 1:
         if ratio_max is not None and ratio_max != ratio_min:
             raise ValueError("--ratio-steps 1 computes only --ratio-min: leave out --ratio-max "
@@ -200,8 +205,11 @@ WORKERS_OPT = typer.Option(None, help="Local worker processes (default: every co
                            "sweeps run in-process).")
 SCHEDULER_OPT = typer.Option(None, help="Run on a running Dask scheduler tcp://HOST:PORT.")
 DASK_WORKERS_OPT = typer.Option(None, help="Start a local Dask cluster of N workers.")
-STORE_OPT = typer.Option(None, help="Resumable store of finished chunks (default: "
-                         "$ROCKARCH_CACHE or ~/.cache/rockarch).")
+STORE_OPT = typer.Option(None, help="Folder of the resumable store of finished chunks. "
+                         "Default: $ROCKARCH_CACHE, else $XDG_CACHE_HOME/rockarch, else "
+                         f"~/.cache/rockarch (here: {default_store_dir()}). Set "
+                         "ROCKARCH_CACHE or give --store DIR to move it; 'rockarch cache "
+                         "info' / 'rockarch cache clear' show and empty it.")
 NO_STORE_OPT = typer.Option(False, "--no-store", help="Keep no store (always recompute).")
 
 

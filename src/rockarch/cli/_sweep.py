@@ -1,4 +1,4 @@
-"""The sweep options of ``rockarch oas`` and ``rockarch site-oas`` (``--workers``,
+"""The sweep options of ``rockarch oas``, ``site-oas`` and ``fragility`` (``--workers``,
 ``--scheduler``, ``--dask-workers``, ``--store``, ``--no-store``): which executor and store
 of :mod:`rockarch.sweep` they ask for (docs/sweeps.md, "Command line")."""
 
@@ -60,6 +60,8 @@ def open_sweep(*, workers: int | None = None, scheduler: str | None = None,
     executor = executor_for(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
                             n_sims=n_sims)
     try:
+        if executor is not None:
+            executor.check_reachable()
         yield executor, store
     finally:
         if executor is not None:

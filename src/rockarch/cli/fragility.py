@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import sys
+from enum import Enum
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,9 @@ from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
+
+#: The --im choices (the library's registry).
+Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
 
 #: From this many records the IDA runs on local processes unless told otherwise: each
 #: bisection round is one simulation per record, in parallel only across processes
@@ -47,6 +51,12 @@ def fragility(
     rise_over_span: float = typer.Option(None, help="fourhinge/mdof: f/l."),
     thickness_over_span: float = typer.Option(None, help="fourhinge/mdof: d/l."),
     blocks: int = typer.Option(None, help="fourhinge/mdof: voussoirs."),
+    column: str = cc.COLUMN_OPT, friction: float = cc.FRICTION_OPT,
+    spans: int = cc.SPANS_OPT, pier_height: float = cc.PIER_H_OPT,
+    pier_width: float = cc.PIER_W_OPT, pier_blocks: int = cc.PIER_BLOCKS_OPT,
+    abutments: bool = cc.ABUT_OPT, wall: str = cc.WALL_OPT, block: str = cc.BLOCK_OPT,
+    colonnade: int = cc.COLONNADE_OPT, bay: float = cc.BAY_OPT,
+    lintel: float = cc.LINTEL_OPT, assembly: Path = cc.ASSEMBLY_OPT,
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
@@ -57,7 +67,7 @@ def fragility(
                                        "record files; several may follow one --records."),
     more: list[Path] = typer.Argument(None, hidden=True),
     units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
-    im: str = typer.Option("pga", help="Intensity measure: pga, pgv or sa."),
+    im: Im = typer.Option("pga", help="Intensity measure of the curve's x axis."),
     period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa)."),
     im_range: str = typer.Option(None, help="IM range of the curve and band: LO,HI in g "
                                  "(pga, sa) or m/s (pgv); default the records' range "
@@ -79,8 +89,7 @@ def fragility(
 ) -> None:
     """Incremental dynamic analysis at one p and a lognormal fragility (maximum likelihood,
     censored records included, bootstrap band). PGA and Sa in m/s², PGV in m/s."""
-    if im not in fr.IMS:
-        raise ValueError(f"--im must be one of {', '.join(fr.IMS)}, got {im!r}")
+    im = im.value
     if bootstrap < 0:
         raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
     if not 0 < level < 1:
@@ -89,9 +98,13 @@ def fragility(
                          rise_over_span=rise_over_span,
                          thickness_over_span=thickness_over_span, blocks=blocks,
                          mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
-                         restitution=restitution, t_free=t_free)
+                         restitution=restitution, t_free=t_free,
+                         **cc.mdof_structure(locals()))
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
+    if ratio_max is not None and not ratio_max > 1:
+        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
+                         f"{ratio_max}")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     rng = im_range_si(im_range, im)
     check_outputs((plot, "--plot", "png"))

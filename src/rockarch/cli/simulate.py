@@ -75,6 +75,9 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     else:
         typer.echo(f"safe: max rotation / its overturning value = "
                    f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts")
+    stride = getattr(resp, "stride", 1)
+    if stride > 1:  # docs/theory.md Eq. (8.6): the verdict above is exact
+        typer.echo(f"history: every {stride}th step kept (ROCKARCH_MAX_SAMPLES)")
     if plot is not None:
         typer.echo(f"wrote {plot}")
 
@@ -210,17 +213,25 @@ def simulate_mdof(
     gap_tol: float = MDOF_TOL_OPT, plot: Path = typer.Option(
         None, help="Write a PNG of the largest block rotation / delta and a_g over time."),
     json_out: bool = JSON_OPT,
+    mechanism: Path = typer.Option(None, help="Also write a PNG of the static collapse "
+                                   "mechanism (docs/theory.md §10)."),
 ) -> None:
     """Simulate a multi-block structure whose joints open, close and (with --friction)
     slide: an arch (alone, on piers, a bridge), a column, a wall, a colonnade, a JSON file.
 
     --ratio is relative to the structure's ap,min (limit analysis, friction included).
     """
-    check_outputs((plot, "--plot", "png"))
+    check_outputs((plot, "--plot", "png"), (mechanism, "--mechanism", "png"))
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
                           t_free, h_factor, gap_tol)
+    if mechanism is not None:
+        from rockarch.mdof.collapse_plot import plot_collapse
+
+        plot_collapse(sysobj.assembly, mechanism)
     _run(sysobj, _mdof_header(sysobj.assembly), signal, period, cycles, record, units, ratio,
          plot, json_out, extra={"ap_min": sysobj.ap_min})
+    if mechanism is not None and not json_out:
+        typer.echo(f"wrote {mechanism}")
 
 
 @app.command(short_help="GIF of an MDOF arch or column in motion.")

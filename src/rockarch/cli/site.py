@@ -109,6 +109,8 @@ def design(
                               "PGA [m/s²]."),
     probability: float = typer.Option(0.1, help="With --records: the PGA at this "
                                       "probability of collapse."),
+    save_site: Path = typer.Option(None, help="With --records: also write the site OAS "
+                                   "computed on the fly (NetCDF, reusable as --site)."),
     thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
                                        "equivalent (same ap,min) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
@@ -127,9 +129,11 @@ def design(
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
-    check_outputs((report, "--report", "html"))
+    check_outputs((report, "--report", "html"), (save_site, "--save-site", "netcdf"))
     if (site_file is None) == (not records):
         raise ValueError("give either --site FILE or --records DIR")
+    if save_site is not None and not records:
+        raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
     if records:
         from rockarch import charsite
         from rockarch.suite import read_suite
@@ -139,6 +143,8 @@ def design(
         with open_sweep(n_sims=n_sims, echo=echo_err) as (executor, chunk_store):
             site_ds = charsite.site_from_records(suite, executor=executor, store=chunk_store,
                                                 progress=sys.stderr.isatty())
+        if save_site is not None:
+            site_mod.save(site_ds, save_site)
     else:
         site_ds = site_mod.load(site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
@@ -159,7 +165,7 @@ def design(
         if report is not None:
             from rockarch.plot_fragility import fragility_html
 
-            html_extra = fragility_html(frag, extra["fragility"])
+            html_extra = fragility_html(frag, extra["fragility"], suite)
     if report is not None:
         from rockarch.output.report import write_report
 

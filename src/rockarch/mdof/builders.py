@@ -302,7 +302,7 @@ def _springer(xl, xr, y0, tops) -> np.ndarray:
 def bridge(arch: Arch, n_voussoirs: int, *, spans: int = 1, pier_height: float,
            pier_width: float, pier_blocks: int | None = None, abutments: bool | None = None,
            mu=None, g: float = G) -> Assembly:
-    """``spans`` equal arches of ``n_voussoirs`` voussoirs on piers (Eq. 10.6).
+    """``spans`` equal arches of ``n_voussoirs`` voussoirs on piers (docs/theory.md §10).
 
     Every pier is a stack of ``pier_blocks`` blocks (default: about square) of width
     ``pier_width``, from the ground to the intrados springing at ``pier_height``; its top

@@ -93,9 +93,9 @@ def _motion_arrays(motion: GroundMotion | None):
 def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: int
           ) -> tuple[int, int]:
     """Time steps of a simulation and the recording stride, known before anything is
-    allocated: at most :func:`rockarch.limits.max_mdof_steps` steps (else ValueError), a
-    history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES` (every k-th step recorded
-    above it; the simulation itself is unchanged)."""
+    allocated (docs/theory.md Eq. (8.7)): at most :func:`rockarch.limits.max_mdof_steps`
+    steps (else ValueError), a history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES`
+    (every k-th step recorded above it; the simulation itself is unchanged)."""
     need = t_end / h
     if not need <= limits.max_mdof_steps():
         raise limits.too_many(f"an MDOF simulation of {t_end:.6g} s at h = {h:.3g} s", need,

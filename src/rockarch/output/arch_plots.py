@@ -2,7 +2,7 @@
 design check's arch with its replacement catenaries.
 
 Each drawing is a ``draw_*(ax, ...)`` function on a given axes, so a figure can combine them
-(e.g. the design report adds the replacement band with :func:`draw_replacements`); the
+(e.g. the design report adds the replacement band with :func:`draw_replacement_band`); the
 ``*_figure`` functions build the figures the CLI and the report write.
 """
 
@@ -52,19 +52,21 @@ def draw_arch(ax, arch, *, color: str = "0.85", edge: str = "0.4", label: str = 
     ax.plot(outline[:, 0], outline[:, 1], color=edge, lw=0.8, zorder=2)
 
 
-def draw_hinges(ax, hinges, *, ms: float = 7, legend: bool = True) -> None:
-    """Hinges: white on the intrados, black on the extrados."""
+def draw_hinges(ax, hinges, *, ms: float = 7, legend: bool = True, offset=(0.0, 0.0)
+                ) -> None:
+    """Hinges: white on the intrados, black on the extrados (shifted by ``offset``)."""
     for h in hinges:
-        ax.plot(h.x, h.y, "o", ms=ms, mfc="white" if h.side == "intrados" else "k",
-                mec="k", zorder=5)
+        ax.plot(h.x + offset[0], h.y + offset[1], "o", ms=ms,
+                mfc="white" if h.side == "intrados" else "k", mec="k", zorder=5)
     if legend:
         ax.plot([], [], "o", mfc="white", mec="k", label="hinge on intrados")
         ax.plot([], [], "o", mfc="k", mec="k", label="hinge on extrados")
 
 
-def draw_thrust_line(ax, res: ArchMechanism, label: str | None = None) -> None:
-    """The thrust line at collapse of a four-hinge analysis."""
-    th = res.thrust.thrust
+def draw_thrust_line(ax, res: ArchMechanism, label: str | None = None, offset=(0.0, 0.0)
+                     ) -> None:
+    """The thrust line at collapse of a four-hinge analysis (shifted by ``offset``)."""
+    th = res.thrust.thrust + np.asarray(offset, dtype=float)
     ax.plot(th[:, 0], th[:, 1], color="tab:red", lw=1.2, zorder=4,
             label=label or f"thrust line at collapse, ap,min = {res.ap_min:.3f} m/s²")
 
@@ -113,27 +115,43 @@ def plot_mechanism(res: ArchMechanism, path, *, u: float | None = None) -> Path:
     return save_figure(mechanism_figure(res, u=u), path, dpi=120)
 
 
-def draw_replacements(ax, result) -> None:
-    """Both replacement catenaries of a design check (the chosen rule drawn thicker)."""
+def draw_replacement_band(ax, result) -> None:
+    """Both replacement catenaries inside the original contour, in the original's
+    coordinates (the chosen rule drawn thicker and shaded), the original's springing joints
+    and the replacement's springing points on them (docs/theory.md Eqs. 7.3–7.6)."""
     sig = np.linspace(0.0, 1.0, 1201)
+    oi, oe = result.arch.joints_at(np.array([0.0, 1.0]))
+    for k in (0, 1):
+        ax.plot([oi[k, 0], oe[k, 0]], [oi[k, 1], oe[k, 1]], color="0.2", lw=1.4, zorder=3,
+                label="springing joints" if k == 0 else None)
     for rep, style in ((result.replacement.lower_bound, ":"),
                        (result.replacement.equivalent, "--")):
+        shift = rep.springings[0]
         ri, re_ = rep.arch.joints_at(sig)
-        lw = 1.6 if rep.rule == result.rule else 0.9
-        lab = f"replacement ({rep.rule}), d = {rep.thickness:.3f} m, f = {rep.rise:.3f} m"
-        ax.plot(ri[:, 0], ri[:, 1], "b" + style, lw=lw, label=lab)
-        ax.plot(re_[:, 0], re_[:, 1], "b" + style, lw=lw)
+        ri, re_ = ri + shift, re_ + shift
+        chosen = rep.rule == result.rule
+        lab = (f"replacement ({rep.rule}), d = {rep.thickness:.3f} m, l′ = {rep.span:.3f} m, "
+               f"f′ = {rep.rise:.3f} m")
+        if chosen:
+            band = np.concatenate([ri, re_[::-1], ri[:1]])
+            ax.fill(band[:, 0], band[:, 1], color="tab:blue", alpha=0.15, zorder=2)
+        ax.plot(ri[:, 0], ri[:, 1], "b" + style, lw=1.6 if chosen else 0.9, label=lab)
+        ax.plot(re_[:, 0], re_[:, 1], "b" + style, lw=1.6 if chosen else 0.9)
+    pts = result.chosen.springings
+    ax.plot(pts[:, 0], pts[:, 1], "s", ms=5, mfc="tab:blue", mec="k", zorder=6,
+            label="replacement springings (on the springing joints)")
 
 
 def design_arch_figure(result):
-    """The design check's arch, both replacement catenaries, the chosen one's thrust line
-    and hinges."""
+    """The design check's arch, both replacement catenaries with their springings, the
+    chosen one's thrust line and hinges."""
     fig = new_figure(_figsize(result.arch), layout="constrained")
     ax = fig.subplots()
     draw_arch(ax, result.arch, color="0.88", edge="0.45")
-    draw_replacements(ax, result)
+    draw_replacement_band(ax, result)
     chosen = result.chosen.mechanism
-    draw_thrust_line(ax, chosen)
-    draw_hinges(ax, chosen.hinges, ms=6, legend=False)
+    shift = result.chosen.springings[0]
+    draw_thrust_line(ax, chosen, offset=shift)
+    draw_hinges(ax, chosen.hinges, ms=6, legend=False, offset=shift)
     _finish(ax, 2)
     return fig

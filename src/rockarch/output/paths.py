@@ -102,7 +102,7 @@ def check_output_dir(path: Path | str | None, option: str | None = None) -> Path
     found = _existing_ancestor(path.absolute())
     if not found.is_dir():
         what = "is a file" if found == path.absolute() else f"{found} is a file"
-        raise ValueError(f"{label}: {what}, not a folder")
+        raise ValueError(f"{label}: {what}, not a directory")
     _probe_writable(found, label)
     return path
 

@@ -17,10 +17,11 @@ from rockarch.output.html import escape, inline_figure, key_value_table, page, s
 from rockarch.output.paths import write_text
 
 ASSUMPTIONS = [
-    "The arch is replaced by a catenary arch carrying its own mass distribution (paper "
-    "Sect. 4 and 8). The lower-bound thickness (the thickest such catenary inside the "
-    "contour) is conservative; the equivalent thickness (same ap,min as the arch) is the "
-    "paper's Sect. 9 choice and its safety rests on the other assumptions below.",
+    "The arch is replaced by a catenary arch carrying its own mass (paper Sect. 4 and 8), on "
+    "the axis of the thickest uniform catenary band inside the arch's contour with its "
+    "springings on the arch's springing joints. That band's thickness (lower bound) is "
+    "conservative; the equivalent thickness (same ap,min as the arch) is the paper's Sect. 9 "
+    "choice and its safety rests on the other assumptions below.",
     "The catenary arch is replaced by a slender monolithic rigid block with the same p and "
     "ap,min (DeJong & Dimitrakopoulos equivalence; paper Hypotheses 1–3: the block's OAS is a "
     "safe approximation of the multi-block catenary arch's).",
@@ -90,9 +91,10 @@ def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inpu
             site_ds["record_name"].values, site_ds["record_pga"].values,
             site_ds["record_sha256"].values, strict=True)])
     replacements = table(
-        ["replacement", "d [m]", "d/l", "f [m]", "p [1/s]", "ap,min [m/s²]", "c1", "c2",
-         "block R [m]"],
-        [(r.rule, f"{r.thickness:.4f}", f"{r.thickness / r.arch.span:.5f}", f"{r.rise:.4f}",
+        ["replacement", "d [m]", "d/l′", "d/l", "l′ [m]", "f′ [m]", "p [1/s]",
+         "ap,min [m/s²]", "c1", "c2", "block R [m]"],
+        [(r.rule, f"{r.thickness:.4f}", f"{r.thickness / r.span:.5f}",
+          f"{r.thickness / r.original_span:.5f}", f"{r.span:.4f}", f"{r.rise:.4f}",
           f"{r.p:.4f}", f"{r.ap_min:.4f}", f"{r.mechanism.c1:.4f}", f"{r.mechanism.c2:.4f}",
           f"{r.R_block:.4f}") for r in (rep.lower_bound, rep.equivalent)])
     body = f"""<h1>Overturning design check of a masonry arch</h1>
@@ -107,7 +109,10 @@ Below this PGA the arch may move but does not collapse.</div>
 {inline_figure(design_arch_figure(result), "arch")}
 <p>Original arch: critical optimal four-hinge mechanism ap,min = {rep.original.ap_min:.4f} m/s²
 (lambda = {rep.original.lambda_:.5f}), p = {rep.original.p:.4f} 1/s,
-delta = {rep.original.delta:.5f} rad.</p>
+delta_u = {rep.original.delta:.5f} rad. Replacement springings (square markers, original's
+coordinates): P_L = ({c.springings[0, 0]:.4f}, {c.springings[0, 1]:.4f}) m,
+P_R = ({c.springings[1, 0]:.4f}, {c.springings[1, 1]:.4f}) m, on the springing joints;
+l′ is the replacement's own span, l the arch's.</p>
 {replacements}
 <h2>Site OAS</h2>
 {inline_figure(site_figure(result, site_ds), "site OAS")}

@@ -3,13 +3,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
-import signal
-import time
 from collections.abc import Callable, Sequence
 
 import numpy as np
+
+from rockarch.sweep.workers import _deferred_sigint, _worker_init, run_chunk
 
 #: Executor modes.
 MODES = ("serial", "processes", "dask")
@@ -37,8 +38,16 @@ def _probe_scheduler(address: str, timeout: float) -> None:
 
     ``distributed.Client(timeout=...)`` bounds the TCP connect but not the handshake: a
     port that accepts and never answers would hang it. The probe runs on its own event loop
-    in a helper thread (so it also works under a running loop, e.g. Jupyter)."""
+    in a helper thread (so it also works under a running loop, e.g. Jupyter). A plain TCP
+    connect comes first: a closed port is refused at once (distributed would retry it until
+    the timeout)."""
     import asyncio
+    import socket
+
+    m = _ADDRESS.match(address)
+    if m is not None:
+        with socket.create_connection((m.group(2).strip("[]"), int(m.group(3))), timeout):
+            pass
     from concurrent.futures import ThreadPoolExecutor
     from concurrent.futures import TimeoutError as FutTimeout
 
@@ -57,60 +66,21 @@ def _probe_scheduler(address: str, timeout: float) -> None:
         pool.shutdown(wait=False)
 
 
-def _alive(pid: int) -> bool:
-    """Whether process ``pid`` runs (a zombie, killed but not yet reaped, does not)."""
+def _start_local_cluster(factory, **kwargs):
+    """``factory(**kwargs)`` (a Dask ``LocalCluster``); if it is interrupted while starting
+    (Ctrl-C), close what it had started, quietly, so that distributed's exit handler does
+    not print a traceback about a half-started cluster."""
+    from distributed.deploy.spec import SpecCluster
+
+    before = set(SpecCluster._instances)
     try:
-        with open(f"/proc/{pid}/stat", "rb") as f:
-            return f.read().rsplit(b")", 1)[1].split()[0] not in (b"Z", b"X")
-    except FileNotFoundError:
-        return False
-    except (OSError, IndexError):  # no /proc: ask the kernel
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return False
-        except PermissionError:
-            return True
-        return True
-
-
-def _worker_init(parent: int) -> None:
-    """Local worker process: numba on one thread (the pool supplies the parallelism); the
-    parent handles Ctrl-C; and the worker exits once the parent is gone (after ``kill -9``
-    of the sweep a worker finishes at most its current chunk, instead of idling forever)."""
-    import threading
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    import numba
-
-    numba.set_num_threads(1)
-    ppid = os.getppid()
-
-    def watch() -> None:
-        while _alive(parent) and os.getppid() == ppid:
-            time.sleep(0.5)
-        os._exit(1)
-
-    threading.Thread(target=watch, name="rockarch-parent-watch", daemon=True).start()
-
-
-def run_chunk(system, motion, p, ratio, threads: int | None = None):
-    """One chunk: ``system.run(motion, p, ratio)`` as (bool array, float64 array).
-
-    ``threads`` limits the numba threads of this call (thread-local; None: unchanged).
-    """
-    if threads is None:
-        over, resp = system.run(motion, p, ratio)
-    else:
-        import numba
-
-        before = numba.get_num_threads()
-        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
-        try:
-            over, resp = system.run(motion, p, ratio)
-        finally:
-            numba.set_num_threads(before)
-    return np.asarray(over, dtype=bool), np.asarray(resp, dtype=np.float64)
+        return factory(**kwargs)
+    except BaseException:
+        for cluster in set(SpecCluster._instances) - before:
+            with contextlib.suppress(BaseException):
+                cluster.close(timeout=5)
+            cluster.shutdown_on_close = False
+        raise
 
 
 class Executor:
@@ -199,6 +169,27 @@ class Executor:
             self._cluster = None
 
     # -- starting
+    def check_reachable(self) -> None:
+        """Raise ValueError within ~:data:`CONNECT_TIMEOUT` s if the Dask scheduler of this
+        executor does not answer (nothing to check in the other modes). A command calls it
+        before looking in the store, so that a wrong address is an error even when every
+        chunk is already stored."""
+        if self.scheduler is not None and self._client is None:
+            with self._unreachable():
+                _probe_scheduler(self.scheduler, CONNECT_TIMEOUT)
+
+    @contextlib.contextmanager
+    def _unreachable(self):
+        """Any failure to reach the scheduler becomes one ValueError line."""
+        try:
+            yield
+        except Exception as exc:  # noqa: BLE001 - no scheduler, or not a Dask one
+            why = (str(exc).splitlines() or [""])[0][:120] or type(exc).__name__
+            if not isinstance(exc, (OSError, TimeoutError)):  # e.g. garbage read as a frame
+                why = f"something answers there, but not a Dask scheduler ({why[:60]})"
+            raise ValueError(f"cannot reach a Dask scheduler at {self.scheduler} "
+                             f"(waited up to {CONNECT_TIMEOUT:g} s): {why}") from None
+
     def _ensure_pool(self):
         if self._pool is None:
             import multiprocessing
@@ -219,18 +210,17 @@ class Executor:
         from distributed import Client, LocalCluster
 
         if self.scheduler is not None:
-            try:
+            with self._unreachable():
                 _probe_scheduler(self.scheduler, CONNECT_TIMEOUT)
                 self._client = Client(self.scheduler, timeout=f"{CONNECT_TIMEOUT}s")
-            except Exception as exc:  # noqa: BLE001 - no scheduler, or not a Dask one
-                why = (str(exc).splitlines() or [""])[0][:120] or type(exc).__name__
-                raise ValueError(f"cannot reach a Dask scheduler at {self.scheduler} "
-                                 f"(waited up to {CONNECT_TIMEOUT:g} s): {why}") from None
         else:
-            self._cluster = LocalCluster(n_workers=self.dask_workers, threads_per_worker=1,
-                                         processes=True, host="127.0.0.1",
-                                         dashboard_address=None,
-                                         silence_logs=logging.ERROR)
+            # no dashboard, and its HTTP server on a free port (the default 8787 may be
+            # taken by another cluster: distributed would warn)
+            self._cluster = _start_local_cluster(
+                LocalCluster, n_workers=self.dask_workers, threads_per_worker=1,
+                processes=True, host="127.0.0.1", dashboard_address=None,
+                silence_logs=logging.ERROR,
+                scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
             self._client = Client(self._cluster)
         return self._client
 
@@ -253,19 +243,22 @@ class Executor:
         from concurrent.futures import FIRST_COMPLETED, wait
 
         pool = self._ensure_pool()
-        futs = {pool.submit(run_chunk, system, motion, p, r): i
-                for i, (p, r) in enumerate(tasks)}
+        futs: dict = {}
         try:
+            with _deferred_sigint():  # submitting starts the workers: no Ctrl-C halfway
+                for i, (p, r) in enumerate(tasks):
+                    futs[pool.submit(run_chunk, system, motion, p, r)] = i
             pending = set(futs)
             while pending:
                 finished, pending = wait(pending, return_when=FIRST_COMPLETED)
                 for f in finished:
                     done(futs[f], f.result())
-        except BaseException as exc:
+        except KeyboardInterrupt:
+            self._abort_pool()  # the pool itself marks the chunks it did not run
+            raise
+        except BaseException:
             for f in futs:
                 f.cancel()
-            if isinstance(exc, KeyboardInterrupt):
-                self._abort_pool()
             raise
 
     def _abort_pool(self) -> None:
@@ -273,9 +266,17 @@ class Executor:
         pool, self._pool = self._pool, None
         if pool is None:
             return
-        for proc in list(getattr(pool, "_processes", {}).values()):
+        call_queue = getattr(pool, "_call_queue", None)
+        if call_queue is not None:  # its feeder thread may be stuck on a full pipe that
+            call_queue.cancel_join_thread()  # no worker reads any more: do not wait for it
+        procs = list(getattr(pool, "_processes", {}).values())
+        for proc in procs:
             proc.terminate()
-        pool.shutdown(wait=False, cancel_futures=True)
+        # wait for them: a worker still starting up would otherwise look for the pool's
+        # semaphores after this process has removed them, and print a traceback
+        for proc in procs:
+            proc.join(5.0)
+        pool.shutdown(wait=False)
 
     def _scatter(self, client, obj):
         key = id(obj)
