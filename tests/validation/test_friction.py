@@ -3,6 +3,7 @@ block, the rock / slide / slide-rock onset), energy, and the no-sliding limit mu
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -160,3 +161,24 @@ def test_gauss_seidel_solver_newmark():
     status, fails, max_slip, n_slide = out[0], out[7], out[8], out[9]
     assert status == 0 and fails == 0 and n_slide == 2
     assert max_slip == pytest.approx(newmark_slip(0.5 * G, 0.1, 0.2), rel=2e-3)
+
+
+@pytest.mark.parametrize("mu", [0.5, math.inf])
+def test_fully_open_joint_separates_only_with_friction(mu):
+    # a block 1 mm above the ground moving sideways at 1 m/s, one contact solve: with
+    # friction the open joint carries no impulse at all (it separates: the velocity is
+    # untouched); without (mu = inf, the no-sliding model) the no-slip row holds the hinge
+    from rockarch.mdof import graph_stepper as gs
+    from rockarch.mdof.kernel_data import graph_model
+
+    blk = mdof.single_block(0.5, 1.0)
+    m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))
+    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1] + 1e-3, np.zeros(1)
+    vx, vy, om = np.array([1.0]), np.zeros(1), np.zeros(1)
+    h = 1e-3  # the gap (1 mm) is not closed within the step: no speculative contact
+    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws)
+    if math.isfinite(mu):
+        assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
+    else:  # the hinge stops the base corner's sideways motion (r_y = -H/2 = -0.5 m)
+        assert abs(vx[0] + 0.5 * om[0]) < 1e-6 and vx[0] < 1.0
