@@ -72,8 +72,6 @@ def assemble(*, name: str, kind: str, mass, inertia, centroid, polygons, joints,
     mass = np.asarray(mass, float)
     nb_ = len(mass)
     names = list(names) if names is not None else [f"block {i}" for i in range(nb_)]
-    if not joints:
-        raise ValueError("the assembly has no contacts")
     body_a = np.array([j[0] for j in joints], dtype=np.int64)
     body_b = np.array([j[1] for j in joints], dtype=np.int64)
     _graph_checks(nb_, body_a, body_b, names)
@@ -176,7 +174,7 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
     nb_ = len(polys)
     dens = np.broadcast_to(np.asarray(density, float), (nb_,))
     for i, d in enumerate(dens):
-        positive(f"density of {names[i]}", d)
+        positive(f"density of {names[i]}", float(d))
     pts = np.concatenate(polys + sup)
     tol = pg.REL_TOL * float(np.ptp(pts, axis=0).max())
     _check_overlaps(polys, sup, names, tol)
