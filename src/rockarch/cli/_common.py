@@ -269,5 +269,5 @@ def mdof_structure(params: dict) -> dict:
     if "wall" in kw:
         kw["wall"] = _ints("--wall", kw["wall"], 2)
     if "block" in kw:
-        kw["block"] = list(float_list("--block", kw["block"]))
+        kw["block"] = [float(v) for v in float_list("--block", kw["block"])]
     return kw
