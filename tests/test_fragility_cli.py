@@ -78,6 +78,7 @@ def _check_contract(folder, tmp_path):
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
     (["--level", "95"], "--level must lie in (0, 1)"),
+    (["--ratio-max", "0.5"], "--ratio-max must be > 1"),
     (["--p", "0"], "p must be a finite number > 0"),
     (["--p", "nan"], "p must be a finite number > 0"),
     (["--alpha", "-1"], "alpha"),
@@ -141,6 +142,7 @@ def test_design_with_records(tmp_path):
     assert saved.sizes["record"] == 2 and "simplified" in saved
     page = (tmp_path / "r.html").read_text()
     assert "Fragility of the replacement" in page and "--records" in page
+    assert "Response spectra of the records" in page
 
 
 def test_design_needs_site_or_records(folder):

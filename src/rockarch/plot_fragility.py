@@ -63,11 +63,19 @@ def plot_fragility(frag: Fragility, im_range=None):
     return fig
 
 
-def fragility_html(frag: Fragility, summary: dict) -> str:
-    """An HTML section (figure inlined as base64 PNG) of the replacement's fragility for the
-    design report: the curve with its band and points, θ, β and the probabilities of
+def fragility_html(frag: Fragility, summary: dict, suite=None) -> str:
+    """HTML sections (figures inlined as base64 PNG) for the design report: the suite's
+    response spectra (Sa/PGA, if ``suite`` is given), then the replacement's fragility:
+    the curve with its band and points, θ, β and the probabilities of
     :func:`rockarch.fragility.design_summary`."""
     from rockarch.output.html import inline_figure, key_value_table
+
+    spectra = ""
+    if suite is not None:
+        from rockarch.plot_suite import plot_spectra
+
+        spectra = ("<h2>Response spectra of the records</h2>\n"
+                   f"{inline_figure(plot_spectra(suite), 'response spectra')}\n")
 
     rows = [("median PGA θ [m/s²]", f"{summary['median']:.3f}"),
             ("β", f"{summary['beta']:.3f}"),
@@ -77,7 +85,7 @@ def fragility_html(frag: Fragility, summary: dict) -> str:
             d = summary[key]
             rows.append((f"P(collapse) = {d['probability']:.3g} at PGA [m/s²]",
                          f"{d['pga']:.3f}"))
-    return ("<h2>Fragility of the replacement (IDA over the records)</h2>\n"
+    return (spectra + "<h2>Fragility of the replacement (IDA over the records)</h2>\n"
             f"{inline_figure(plot_fragility(frag), 'fragility')}\n"
             f"{key_value_table(rows)}\n<p>Lognormal fit by maximum likelihood (records "
             "that do not collapse within the scan are censored), docs/theory.md §11.3.</p>")

@@ -102,6 +102,9 @@ def fragility(
                          **cc.mdof_structure(locals()))
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
+    if ratio_max is not None and not ratio_max > 1:
+        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
+                         f"{ratio_max}")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     rng = im_range_si(im_range, im)
     check_outputs((plot, "--plot", "png"))

@@ -165,7 +165,7 @@ def design(
         if report is not None:
             from rockarch.plot_fragility import fragility_html
 
-            html_extra = fragility_html(frag, extra["fragility"])
+            html_extra = fragility_html(frag, extra["fragility"], suite)
     if report is not None:
         from rockarch.output.report import write_report
 
