@@ -203,13 +203,26 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         return sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
                                 bar=bar)
 
+    def run_round(tasks):
+        """A bisection round (one simulation per record): split into up to ``len(parts)``
+        chunks, so that the records of a round run in parallel on an executor (the OAS
+        code groups at least 16 cheap simulations a chunk)."""
+        flat_rows = np.concatenate([np.ravel(t[0]) for t in tasks])
+        flat_ratio = np.concatenate([np.ravel(t[1]) for t in tasks])
+        pieces = np.array_split(np.arange(flat_rows.size), min(len(parts), flat_rows.size))
+        res = run([(flat_rows[k], flat_ratio[k]) for k in pieces])
+        o = np.concatenate([np.ravel(r[0]) for r in res])
+        m = np.concatenate([np.ravel(r[1]) for r in res])
+        bounds = np.cumsum([0] + [np.size(t[0]) for t in tasks])
+        return [(o[a:b], m[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+
     try:
         with tqdm(total=over.size, desc=scan.name, unit="sim", disable=not progress,
                   leave=False) as bar:
             grid = [np.meshgrid(rows[idx], ratio, indexing="ij") for idx in parts]
             for idx, (o, _) in zip(parts, run(grid), strict=True):
                 over[idx] = o
-            collapse = _refine_boundary(run, rows, ratio, over, tol, bar, len(parts))
+            collapse = _refine_boundary(run_round, rows, ratio, over, tol, bar, len(parts))
     finally:
         if owned:
             executor.close()
