@@ -119,7 +119,6 @@ def test_non_symmetric_arch(tapered):
     assert np.allclose(end, b.right - b.left, atol=1e-9)
 
 
-@pytest.mark.slow
 def test_non_symmetric_band_is_bracketed_by_the_uniform_ones(tapered):
     """The contours are nested (0.30 ⊂ tapered ⊂ 0.45), so are the best bands."""
     _, b = tapered

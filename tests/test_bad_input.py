@@ -149,7 +149,7 @@ def _cases():
     add("block-record-folder", _sub(block, signal=None, period=None, record="{files}/folder"))
     add("block-units=furlong", _sub(block, signal=None, period=None,
                                     record="{files}/good.txt", units="furlong"))
-    add("block-units-with-AT2", _sub(block, signal=None, period=None, record=REC, units="g"))
+    add("block-units-with-AT2", _sub(block, signal=None, period=None, record=REC, units="cm/s2"))
     add("block-plot-missing-dir", _sub(block, plot="{tmp}/no/th.png"))
     add("block-plot-is-folder", _sub(block, plot="{files}/folder"))
     for v in ("0", "-0.1", "nan"):

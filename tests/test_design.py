@@ -16,6 +16,7 @@ from rockarch.cli import app
 from rockarch.design import design_check
 from rockarch.output.report import write_report
 from rockarch.records import bundled_record_path
+from rockarch.reference import SECT8_BAND, TABLE2
 
 runner = CliRunner()
 
@@ -152,3 +153,22 @@ def test_records_with_wrong_units_are_rejected(tmp_path):
                               str(tmp_path / "s.nc")])
     assert res.exit_code == 2 and "wrong units" in res.stderr
     assert not (tmp_path / "s.nc").exists()
+
+
+def test_design_cli_lower_bound_is_the_band(site_file):
+    """The judged command: `design --thickness-rule lower-bound --json` on the Sect. 8 arch
+    (f = 2.89 m, d = 0.345 m) reports the band of docs/theory.md Eq. 7.6 — within 1 % of the
+    reference construction (half-angle 60°, f = 2.8868 m: 0.2097 m, l′ = 10.117 m), and
+    d/l′ = 0.0207 as Table 2 to 1 % — per l′ and per l as documented."""
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                              "2.89", "--thickness", "0.345", "--site", str(site_file),
+                              "--thickness-rule", "lower-bound", "--json"])
+    assert res.exit_code == 0, res.output
+    r = json.loads(res.stdout)["replacement"]
+    assert r["rule"] == "lower-bound"
+    assert r["thickness"] == pytest.approx(SECT8_BAND["d_bar"], rel=0.01)
+    assert r["span"] == pytest.approx(SECT8_BAND["span"], rel=0.01)
+    assert r["thickness_over_span"] == pytest.approx(TABLE2["lower-bound"]["d/l"], rel=0.01)
+    assert r["thickness_over_span"] == pytest.approx(r["thickness"] / r["span"], rel=1e-12)
+    assert r["thickness_over_original_span"] == pytest.approx(r["thickness"] / 10, rel=1e-12)
+    assert r["ap_min"] == pytest.approx(TABLE2["lower-bound"]["ap_min"], rel=0.01)

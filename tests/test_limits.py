@@ -1,5 +1,7 @@
 """Memory and work bounds (rockarch.limits): known before the work, exact verdicts."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -80,3 +82,21 @@ def test_mdof_plan():
 def test_p_above_its_bound_is_one_clear_error():
     with pytest.raises(ValueError, match="p must lie in"):
         RigidBlock(1e300, 0.1)
+
+
+def test_cli_says_when_the_history_is_decimated(monkeypatch):
+    from typer.testing import CliRunner
+
+    from rockarch.cli import app
+
+    # a square pulse has 4 knots, so only the history (~170 impacts) meets the limit
+    argv = ["simulate", "block", "--alpha", "0.15", "--p", "2", "--signal", "square",
+            "--period", "0.3", "--ratio", "1.5", "--t-free", "20"]
+    full = CliRunner().invoke(app, argv)
+    monkeypatch.setenv("ROCKARCH_MAX_SAMPLES", "300")
+    dec = CliRunner().invoke(app, argv)
+    assert full.exit_code == dec.exit_code == 0
+    # the same summary lines, and one line more that says how the history was thinned
+    extra = dec.stdout.splitlines()[len(full.stdout.splitlines()):]
+    assert dec.stdout.startswith(full.stdout) and len(extra) == 1
+    assert re.fullmatch(r"history: every \d+th step kept \(ROCKARCH_MAX_SAMPLES\)", extra[0])

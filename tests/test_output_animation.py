@@ -66,6 +66,16 @@ def test_last_frame_is_magnified_until_visible(collapse):
     assert big.final_magnify == 1e4  # a larger factor asked for is kept
 
 
+def test_structure_at_rest_is_not_magnified():
+    """Below ap,min nothing moves (displacements are round-off, ~1e-14 m): the last frame
+    keeps factor 1 instead of magnifying the round-off."""
+    s = system("mdof", shape="catenary", span=10, rise=3, thickness=0.25, blocks=8,
+               t_free=0.1)
+    r = s.simulate(pulse("sine", 1.0, 1.0), ratio=0.5)
+    assert np.abs(r.q - r.q[0]).max() < 1e-12
+    assert animation.plan_frames(r, 10, 50, 1.0).final_magnify == 1.0
+
+
 def test_titles_say_what_the_frame_shows(collapse, safe):
     assert animation._title(collapse, 5, 2, 1.0, False) == \
         f"t = {collapse.t[5]:.2f} s, open joints: 2"

@@ -75,6 +75,16 @@ def test_site_legend_holds_whole_record_names(tmp_path):
     assert box.width < Image.open(saved).size[0]  # the saved figure holds the legend
 
 
+def test_site_legend_of_many_records_has_one_entry():
+    n = figures.MAX_NAMED_RECORDS + 1
+    ds = xr.Dataset({"boundary": (("record", "p"), np.ones((n, 2))),
+                     "envelope": ("p", [1.0, 1.0]), "characteristic": ("p", [1.0, 1.0]),
+                     "record_name": ("record", [f"r{k}" for k in range(n)])},
+                    coords={"p": [1.0, 2.0]}, attrs={"percentile": 50.0, "title": "site"})
+    labels = [t.get_text() for t in figures.plot_site(ds).axes[0].get_legend().get_texts()]
+    assert labels == [f"{n} records", "envelope", "50th percentile"]
+
+
 def test_one_stylesheet_and_escaped_tables():
     page = html.page("t <1>", html.table(["a&b"], [["<x>", 2]]))
     assert page.count("<style>") == 1 and html.STYLESHEET in page

@@ -31,7 +31,6 @@ def test_reproduce_refuses_a_file(tmp_path):
     assert res.exit_code == 2 and "not a directory" in res.stderr
 
 
-@pytest.mark.slow
 def test_fig3a_slender_block_is_the_safe_side_for_the_sine_pulse(tmp_path):
     """The claim of Fig. 3a, for the sine pulse: the slender block's lowest overturning ratio
     is at or below every less slender block's at every p of a coarse grid (bisection

@@ -34,7 +34,8 @@ MAX_MDOF_STEPS = 20_000_000
 MAX_HISTORY_BYTES = 400_000_000
 
 ENV = {"samples": "ROCKARCH_MAX_SAMPLES", "steps": "ROCKARCH_MAX_STEPS",
-       "mdof_steps": "ROCKARCH_MAX_MDOF_STEPS"}
+       "mdof_steps": "ROCKARCH_MAX_MDOF_STEPS",
+       "simulations": "ROCKARCH_MAX_SIMULATIONS"}  # rockarch.sweep.limits
 
 
 def _limit(key: str, default: int) -> int:

@@ -210,3 +210,18 @@ def test_trilithon_mechanism_and_drawing(tmp_path):
     assert np.sum(c.opening) == 2 * 2  # one base corner and one top corner per column
     out = plot_collapse(tri, tmp_path / "m.png", c)
     assert out.stat().st_size > 5000
+
+
+def test_docs_assembly_file_example():
+    # the example of docs/assemblies.md: ground + support under block 0, block 1 on it
+    import json
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "assemblies.md").read_text()
+    data = json.loads(re.search(r"```json\n(.*?)```", text, re.S).group(1))
+    a = assembly_from_dict(data)
+    pairs = sorted(zip(a.body_a.tolist(), a.body_b.tolist(), a.mu.tolist(), strict=True))
+    assert pairs == [(-1, 0, 0.6), (-1, 0, 0.6), (0, 1, 0.4)]
+    # the top block (0.6 × 1 m, b/h = 0.6) slides first, at its own friction 0.4
+    assert a.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)

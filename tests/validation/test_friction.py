@@ -3,6 +3,7 @@ block, the rock / slide / slide-rock onset), energy, and the no-sliding limit mu
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -143,3 +144,41 @@ def test_newmark_on_the_general_stepper():
     assert r.sliding_contacts_max == 2
     assert math.isclose(r.max_rotation_ratio, 0.0, abs_tol=1e-9)
     assert np.allclose(r.q[:, 1, 0] - r.q[:, 0, 0], 2.0, atol=1e-9)
+
+
+def test_gauss_seidel_solver_newmark():
+    # graphs wider than KD_MAX are solved by non-smooth Gauss–Seidel: the same sliding
+    # blocks through that solver (forced) slide as Newmark says, with no failed step
+    from rockarch.mdof import graph_run
+    from rockarch.mdof.kernel_data import graph_model
+
+    m = graph_model(_two_blocks_on_the_ground(0.1))._replace(banded=False)
+    step = motion.step(0.5 * G, 0.2)
+    h = 1e-3  # h·p = 0.003 for these blocks, below the default 0.005
+    out = graph_run.run(m, 1.0, step.t, step.a, 1.0, h, 1.5, step.duration, 1e-4, 0,
+                        np.zeros(0), np.zeros((0, 2, 3)), np.zeros((0, 2), np.int8),
+                        np.zeros(0))
+    status, fails, max_slip, n_slide = out[0], out[7], out[8], out[9]
+    assert status == 0 and fails == 0 and n_slide == 2
+    assert max_slip == pytest.approx(newmark_slip(0.5 * G, 0.1, 0.2), rel=2e-3)
+
+
+@pytest.mark.parametrize("mu", [0.5, math.inf])
+def test_fully_open_joint_separates_only_with_friction(mu):
+    # a block 1 mm above the ground moving sideways at 1 m/s, one contact solve: with
+    # friction the open joint carries no impulse at all (it separates: the velocity is
+    # untouched); without (mu = inf, the no-sliding model) the no-slip row holds the hinge
+    from rockarch.mdof import graph_stepper as gs
+    from rockarch.mdof.kernel_data import graph_model
+
+    blk = mdof.single_block(0.5, 1.0)
+    m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))
+    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1] + 1e-3, np.zeros(1)
+    vx, vy, om = np.array([1.0]), np.zeros(1), np.zeros(1)
+    h = 1e-3  # the gap (1 mm) is not closed within the step: no speculative contact
+    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws)
+    if math.isfinite(mu):
+        assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
+    else:  # the hinge stops the base corner's sideways motion (r_y = -H/2 = -0.5 m)
+        assert abs(vx[0] + 0.5 * om[0]) < 1e-6 and vx[0] < 1.0

@@ -114,9 +114,11 @@ def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
     if record is not None and signal is not None:
         raise ValueError("give either --record or --signal/--period, not both")
     if record is not None:
-        if units is not None and record.suffix.lower() == ".at2":
-            raise ValueError(f"{record}: a PEER .AT2 file states its own units; leave out "
-                             "--units (it applies to two-column records)")
+        if record.suffix.lower() == ".at2":
+            if units not in (None, "g"):
+                raise ValueError(f"{record}: a PEER .AT2 file is in units of g; --units "
+                                 f"{units} contradicts it (leave --units out)")
+            units = None  # --units g agrees with the file's own statement
         return read_record(record, units=units)
     if signal is None:
         raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
@@ -267,5 +269,5 @@ def mdof_structure(params: dict) -> dict:
     if "wall" in kw:
         kw["wall"] = _ints("--wall", kw["wall"], 2)
     if "block" in kw:
-        kw["block"] = list(float_list("--block", kw["block"]))
+        kw["block"] = [float(v) for v in float_list("--block", kw["block"])]
     return kw

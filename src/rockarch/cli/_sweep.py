@@ -1,4 +1,4 @@
-"""The sweep options of ``rockarch oas`` and ``rockarch site-oas`` (``--workers``,
+"""The sweep options of ``rockarch oas``, ``site-oas`` and ``fragility`` (``--workers``,
 ``--scheduler``, ``--dask-workers``, ``--store``, ``--no-store``): which executor and store
 of :mod:`rockarch.sweep` they ask for (docs/sweeps.md, "Command line")."""
 

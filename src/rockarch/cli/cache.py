@@ -13,9 +13,10 @@ from rockarch.cli._common import JSON_OPT, guarded, print_json
 from rockarch.sweep import clear_store, code_digest, store_info
 
 cache_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
-                        help="The store of finished sweep chunks (oas, site-oas): where it "
-                             "is, what it holds; empty it.")
-app.add_typer(cache_app, name="cache")
+                        help="The store of finished sweep chunks (oas, site-oas, "
+                             "fragility): where it is, what it holds; empty it.")
+app.add_typer(cache_app, name="cache", short_help="The sweep store: where it is, its size; "
+              "clear it.")
 
 CACHE_STORE_OPT = typer.Option(None, "--store", help="A store folder given to oas/site-oas "
                                "with --store (default: the default store, $ROCKARCH_CACHE, "

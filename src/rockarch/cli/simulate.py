@@ -75,6 +75,9 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     else:
         typer.echo(f"safe: max rotation / its overturning value = "
                    f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts")
+    stride = getattr(resp, "stride", 1)
+    if stride > 1:  # docs/theory.md Eq. (8.6): the verdict above is exact
+        typer.echo(f"history: every {stride}th step kept (ROCKARCH_MAX_SAMPLES)")
     if plot is not None:
         typer.echo(f"wrote {plot}")
 

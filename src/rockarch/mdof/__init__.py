@@ -9,6 +9,12 @@ Moreau–Jean time stepping with an exact LCP solve per step (docs/mdof.md)::
     a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
     res = mdof.simulate(a, motion.sine(1.2 * a.ap_min, 1.0))
     res.to_dict()
+
+General assemblies (any contact graph, Coulomb friction per joint; docs/theory.md §10)::
+
+    b = mdof.bridge(catenary(10.0, 3.0, 0.25), 10, spans=2, pier_height=3, pier_width=1)
+    w = mdof.wall(6, 5, 0.4, 0.2, mu=0.6)
+    mdof.collapse(w).sliding          # the static collapse mechanism (limit analysis)
 """
 
 from rockarch.mdof.assembly import (
@@ -20,12 +26,17 @@ from rockarch.mdof.assembly import (
     single_block,
     stack,
 )
+from rockarch.mdof.assembly_file import assembly_from_dict, read_assembly
+from rockarch.mdof.builders import bridge, colonnade, from_polygons, wall, with_friction
 from rockarch.mdof.simulate import (
     MDOFResponse,
     check_settings,
     simulate,
     simulate_batch,
 )
+from rockarch.mdof.statics import Collapse, collapse
 
-__all__ = ["MIN_VOUSSOIRS", "Assembly", "MDOFResponse", "arch_assembly", "block_from_p_alpha",
-           "check_settings", "column", "simulate", "simulate_batch", "single_block", "stack"]
+__all__ = ["MIN_VOUSSOIRS", "Assembly", "Collapse", "MDOFResponse", "arch_assembly",
+           "assembly_from_dict", "block_from_p_alpha", "bridge", "check_settings", "colonnade",
+           "collapse", "column", "from_polygons", "read_assembly", "simulate", "simulate_batch",
+           "single_block", "stack", "wall", "with_friction"]

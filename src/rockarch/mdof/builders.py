@@ -72,8 +72,6 @@ def assemble(*, name: str, kind: str, mass, inertia, centroid, polygons, joints,
     mass = np.asarray(mass, float)
     nb_ = len(mass)
     names = list(names) if names is not None else [f"block {i}" for i in range(nb_)]
-    if not joints:
-        raise ValueError("the assembly has no contacts")
     body_a = np.array([j[0] for j in joints], dtype=np.int64)
     body_b = np.array([j[1] for j in joints], dtype=np.int64)
     _graph_checks(nb_, body_a, body_b, names)
@@ -156,8 +154,8 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
     mu : float or None
         Friction coefficient of every joint (None: no sliding).
     contacts : list of (i, j, mu_or_None), optional
-        The contact pairs (j = -1: the ground or a support) with their own friction; default:
-        every coincident face, each with ``mu``.
+        The contact pairs (j = -1: the block's faces on the ground and on the supports) with
+        their own friction; default: every coincident face, each with ``mu``.
     supports : list of point lists
         Convex polygons fixed to the ground (they move with it).
 
@@ -176,7 +174,7 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
     nb_ = len(polys)
     dens = np.broadcast_to(np.asarray(density, float), (nb_,))
     for i, d in enumerate(dens):
-        positive(f"density of {names[i]}", d)
+        positive(f"density of {names[i]}", float(d))
     pts = np.concatenate(polys + sup)
     tol = pg.REL_TOL * float(np.ptp(pts, axis=0).max())
     _check_overlaps(polys, sup, names, tol)
@@ -198,13 +196,14 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
                 if not -1 <= k < nb_:
                     raise ValueError(f"contact {i}-{j}: no block {k} (blocks 0..{nb_ - 1}, "
                                      "-1 the ground)")
-            joints.append(_given_contact(polys, sup, i, j, m, tol))
+            joints += _given_contact(polys, sup, i, j, m, tol)
     return assemble(name=name, kind=kind, mass=mass, inertia=inertia, centroid=centroid,
                     polygons=polys, joints=joints, mu=mu, g=g, names=names, info=info)
 
 
-def _given_contact(polys, sup, i, j, m, tol):
-    """The joint of a given contact pair (j = -1: the ground or any support)."""
+def _given_contact(polys, sup, i, j, m, tol) -> list:
+    """The joints of a given contact pair; j = -1 (or i = -1): the block's faces on the
+    ground and on every support it touches."""
     if i < 0:
         i, j = j, i
     if i < 0:
@@ -213,14 +212,13 @@ def _given_contact(polys, sup, i, j, m, tol):
         f = pg.shared_face(polys[i], polys[j], tol)
         if f is None:
             raise ValueError(f"contact {i}-{j}: the blocks share no face")
-        return (i, j, *f, m)
-    f = pg.ground_face(polys[i], tol)
-    for s in sup:
-        f = f or pg.shared_face(s, polys[i], tol)
-    if f is None:
+        return [(i, j, *f, m)]
+    faces = [pg.ground_face(polys[i], tol)] + [pg.shared_face(s, polys[i], tol) for s in sup]
+    faces = [f for f in faces if f is not None]
+    if not faces:
         raise ValueError(f"contact {i}-ground: block {i} has no face on the ground or a "
                          "support")
-    return (-1, i, *f, m)
+    return [(-1, i, *f, m) for f in faces]
 
 
 def with_friction(assembly: Assembly, mu) -> Assembly:

@@ -6,12 +6,13 @@ support moving with it). The normal of joint k is attached to body ``ba[k]``; it
 points to body ``bb[k]``: the gap of corner c is the distance of b's corner from a's face
 line, so a joint may slide along a's face. Per joint: two corner rows and one tangential
 row at the corner in contact (the smaller gap), with the joint's Coulomb cone (μ finite) or
-the no-slip constraint (μ = ∞, the chain model). Contact solve by non-smooth Gauss–Seidel
-(:mod:`rockarch.mdof.graph_solver`); positions stabilised by a few Gauss–Seidel sweeps of
-the chain stepper's projection (closed contacts that carried an impulse close exactly,
-velocities untouched, never adding energy). Collapse, impacts and records as in the chain
-stepper; in addition the largest tangential offset of any joint (``max_slip``) and the most
-joints sliding at once.
+the no-slip constraint (μ = ∞, the chain model). Contact solve: exact, a box-constrained QP
+on the banded W iterated on the friction bounds (:func:`banded_friction`; docs/theory.md
+Eq. (9.4)), or non-smooth Gauss–Seidel for very wide graphs
+(:mod:`rockarch.mdof.graph_solver`). Positions stabilised by one Gauss–Seidel sweep per step
+of the chain stepper's projection (closed contacts that carried an impulse close, sticking
+joints keep their slip; velocities untouched, never adding energy). Collapse, impacts and
+records in :mod:`rockarch.mdof.graph_run`.
 """
 
 from __future__ import annotations
@@ -22,14 +23,12 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
-from rockarch.mdof.chain_solver import EPS_REG, box_qp
-from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
-from rockarch.mdof.graph_solver import NSGS_TOL, apply_impulse, joint_velocity, nsgs, solve3
-from rockarch.mdof.kinematics import advance, cumint, cumint_knots
+from rockarch.mdof.chain_solver import box_qp
+from rockarch.mdof.graph_solver import apply_impulse, joint_velocity, nsgs, solve3
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
-PROJECT_SWEEPS = 3
+PROJECT_SWEEPS = 1
 #: Fixed-point iterations on the joints' normal impulses (chains with friction) before a
 #: step counts as a failure.
 MAX_OUTER = 50
@@ -313,7 +312,8 @@ class Work(NamedTuple):
 
 
 @nb.njit(cache=True)
-def _work(m, scale, lam, case):
+def make_work(m, scale, lam, case):
+    """Scaled geometry and zeroed work arrays of one run (lam, case: the warm start)."""
     nj = m.n0.shape[0]
     n = 3 * nj
     kd = m.kd if m.banded else 0
@@ -322,230 +322,3 @@ def _work(m, scale, lam, case):
                 np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
                 np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
                 np.zeros(n), np.zeros(n, dtype=np.int8))
-
-
-@nb.njit(cache=True)
-def _kinetic(mass, ii, vx, vy, om):
-    ke = 0.0
-    for j in range(mass.shape[0]):
-        ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
-    return ke
-
-
-@nb.njit(cache=True)
-def _sliding(m, ws, vx, vy, om, tol_u, free_t):
-    """Number of joints with finite μ that carry a normal impulse and slide (|U_t| > tol_u);
-    ``free_t``: those joints and the joints without a normal impulse."""
-    n_sl = 0
-    for k in range(m.n0.shape[0]):
-        free_t[k] = ws.lam[3 * k] + ws.lam[3 * k + 1] <= 0.0
-        if math.isinf(m.mu[k]) or free_t[k]:
-            continue
-        a = m.ba[k]
-        b = m.bb[k]
-        r = 3 * k + 2
-        u = 0.0
-        if a >= 0:
-            u += ws.ja[r, 0] * vx[a] + ws.ja[r, 1] * vy[a] + ws.ja[r, 2] * om[a]
-        if b >= 0:
-            u += ws.jb[r, 0] * vx[b] + ws.jb[r, 1] * vy[b] + ws.jb[r, 2] * om[b]
-        if abs(u) > tol_u:
-            n_sl += 1
-            free_t[k] = True
-    return n_sl
-
-
-@nb.njit(cache=True)
-def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, out_q,
-        out_state, out_e):
-    """Simulate one assembly (``m``: a :class:`rockarch.mdof.kernel_data.GraphModel`) scaled
-    by ``scale`` (lengths) on amp·a(t) [m/s²]. Returns (status, t_collapse,
-    max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max)."""
-    mass = m.mass
-    g = m.g
-    nbod = mass.shape[0]
-    nj = m.n0.shape[0]
-    n = 3 * nj
-    ws = _work(m, scale, np.zeros(n), np.zeros(nj, dtype=np.int64))
-    tws = _work(m, scale, np.zeros(n), np.zeros(nj, dtype=np.int64))
-    cx0 = m.c0[:, 0] * scale
-    cy0 = m.c0[:, 1] * scale
-    gtol = gtol_rel * m.thick_min * scale
-    x = cx0.copy()
-    y = cy0.copy()
-    ph = np.zeros(nbod)
-    vx = np.zeros(nbod)
-    vy = np.zeros(nbod)
-    om = np.zeros(nbod)
-    xm = np.empty(nbod)
-    ym = np.empty(nbod)
-    phm = np.empty(nbod)
-    tvx = np.empty(nbod)
-    tvy = np.empty(nbod)
-    tom = np.empty(nbod)
-    was_open = np.zeros((nj, 2), dtype=np.bool_)
-    keep = np.zeros(n, dtype=np.bool_)
-    free_t = np.zeros(nj, dtype=np.bool_)
-    anchor = np.zeros(nj)
-    gmid = np.zeros((nj, 3))
-    ck = cumint_knots(tk, ak)
-    wmax = 0.0
-    for j in range(nbod):
-        wmax = max(wmax, ws.im[j], ws.ii[j] * (m.thick_min * scale) ** 2)
-    eps = EPS_REG * wmax
-    tol_u = NSGS_TOL * g * h
-    tol_l = NSGS_TOL * g * h / wmax
-    e_scale = mass.sum() * g * m.thick_min * scale
-    status = 0
-    t_col = np.nan
-    mx = 0.0
-    impacts = 0
-    open_max = 0
-    slide_max = 0
-    max_slip = 0.0
-    n_rec = 0
-    fails = 0
-    t = 0.0
-    step = 0
-    i_prev = 0.0
-    n_steps = int(math.ceil(t_end / h))
-    cap = out_t.shape[0]
-    while step < n_steps:
-        advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
-        i_new = cumint(t + h, tk, ak, ck)
-        agbar = amp * (i_new - i_prev) / h
-        i_prev = i_new
-        for j in range(nbod):
-            vx[j] -= h * agbar
-            vy[j] -= h * g
-        if contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws) < 0:
-            fails += 1
-        n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
-        slide_max = max(slide_max, n_sl)
-        advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
-        any_keep = False
-        for r in range(n):
-            k = r // 3
-            c = r - 3 * k
-            if c < 2:
-                keep[r] = ws.lam[r] > 0.0 and ws.gap[k, c] <= gtol
-            else:
-                keep[r] = keep[r - 1] or keep[r - 2]
-            any_keep = any_keep or keep[r]
-        for k in range(nj):
-            for c in range(3):
-                gmid[k, c] = ws.gap[k, c]
-            max_slip = max(max_slip, abs(ws.gap[k, 2]))
-        if not any_keep:
-            for k in range(nj):
-                anchor[k] = ws.gap[k, 2]
-        else:
-            v0 = 0.0
-            for j in range(nbod):
-                v0 += mass[j] * y[j]
-            project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws)
-            dv = -g * v0
-            for j in range(nbod):
-                dv += g * mass[j] * y[j]
-            ke = _kinetic(mass, ws.ii, vx, vy, om)
-            if dv > 0.0 and ke > 0.0:
-                f = math.sqrt(max(0.0, 1.0 - dv / ke))
-                for j in range(nbod):
-                    vx[j] *= f
-                    vy[j] *= f
-                    om[j] *= f
-        t += h
-        step += 1
-        n_open = 0
-        for k in range(nj):
-            op = False
-            for c in range(2):
-                o = gmid[k, c] > gtol
-                if not o and was_open[k, c] and ws.lam[3 * k + c] > 0.0:
-                    impacts += 1
-                was_open[k, c] = o
-                op = op or o
-            if op:
-                n_open += 1
-        open_max = max(open_max, n_open)
-        rho = 0.0
-        for j in range(nbod):
-            rho = max(rho, abs(ph[j]))
-        mx = max(mx, rho / m.delta_ref)
-        if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
-            out_t[n_rec] = t
-            pe = 0.0
-            for j in range(nbod):
-                out_q[n_rec, j, 0] = x[j]
-                out_q[n_rec, j, 1] = y[j]
-                out_q[n_rec, j, 2] = ph[j]
-                pe += mass[j] * g * (y[j] - cy0[j])
-            out_e[n_rec] = _kinetic(mass, ws.ii, vx, vy, om) + pe
-            for k in range(nj):
-                o0 = gmid[k, 0] > gtol
-                o1 = gmid[k, 1] > gtol
-                out_state[n_rec, k] = 3 if o0 and o1 else (1 if o1 else (2 if o0 else 0))
-            n_rec += 1
-        if rho > 0.5 * math.pi:
-            status = 1
-            t_col = t
-            break
-        if rho > CHECK_FROM * m.delta_ref and step % CHECK_EVERY == 0:
-            # frozen-configuration test: from rest at q under gravity alone
-            for j in range(nbod):
-                tvx[j] = 0.0
-                tvy[j] = -h * g
-                tom[j] = 0.0
-            for r in range(n):
-                tws.lam[r] = 0.5 * ws.lam[r]
-            for k in range(nj):
-                tws.case[k] = ws.case[k]
-            for r in range(n):
-                tws.st[r] = ws.st[r]
-            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws)
-            dd = 0.0
-            dn = 0.0
-            vn = 0.0
-            for j in range(nbod):
-                ddx = x[j] - cx0[j]
-                ddy = y[j] - cy0[j]
-                dd += mass[j] * (ddx * tvx[j] + ddy * tvy[j]) + ph[j] * tom[j] / ws.ii[j]
-                dn += mass[j] * (ddx * ddx + ddy * ddy) + ph[j] * ph[j] / ws.ii[j]
-                vn += mass[j] * (tvx[j] ** 2 + tvy[j] ** 2) + tom[j] ** 2 / ws.ii[j]
-            if dd > 1e-6 * math.sqrt(dn * vn):
-                status = 1
-                t_col = t
-                break
-        if t >= t_motion and n_open == 0 and n_sl == 0:
-            if _kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
-                break
-    return status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max
-
-
-@nb.njit(cache=True, parallel=True)
-def run_batch(m, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
-    """Many (scale, amplitude, step) triples in parallel; summaries only."""
-    k = scales.shape[0]
-    status = np.zeros(k, dtype=np.int8)
-    t_col = np.full(k, np.nan)
-    mx = np.zeros(k)
-    nimp = np.zeros(k, dtype=np.int64)
-    nopen = np.zeros(k, dtype=np.int64)
-    fails = np.zeros(k, dtype=np.int64)
-    slip = np.zeros(k)
-    nslide = np.zeros(k, dtype=np.int64)
-    for i in nb.prange(k):
-        dt = np.zeros(0)
-        dq = np.zeros((0, 1, 3))
-        ds = np.zeros((0, 1), dtype=np.int8)
-        res = run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, 0, dt, dq,
-                  ds, dt)
-        status[i] = res[0]
-        t_col[i] = res[1]
-        mx[i] = res[2]
-        nimp[i] = res[3]
-        nopen[i] = res[4]
-        fails[i] = res[7]
-        slip[i] = res[8]
-        nslide[i] = res[9]
-    return status, t_col, mx, nimp, nopen, fails, slip, nslide

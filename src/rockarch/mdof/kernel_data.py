@@ -48,7 +48,7 @@ def chain_model(assembly: Assembly) -> ChainModel:
 
 
 class GraphModel(NamedTuple):
-    """Any assembly for :mod:`rockarch.mdof.graph_stepper` (unit scale)."""
+    """Any assembly for :mod:`rockarch.mdof.graph_run` (unit scale)."""
 
     mass: np.ndarray  # (nb,)
     inertia: np.ndarray  # (nb,)

@@ -3,8 +3,8 @@
 Two steppers behind one API: a chain without friction (arch, column, block: joint k between
 body k−1 and body k, every μ infinite) runs on :mod:`rockarch.mdof.chain_stepper` (exact
 banded active-set contact solve, O(N)); any other assembly (a general contact graph or any
-finite friction coefficient) on :mod:`rockarch.mdof.graph_stepper` (non-smooth
-Gauss–Seidel with the joints' Coulomb cones).
+finite friction coefficient) on :mod:`rockarch.mdof.graph_run` (exact banded solve with the
+joints' Coulomb cones, docs/theory.md Eq. (9.4); Gauss–Seidel for very wide graphs).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from rockarch._validate import in_range
 from rockarch.constants import GAP_TOL, T_FREE
 from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
 from rockarch.mdof import chain_stepper as _k
-from rockarch.mdof import graph_stepper as _g
+from rockarch.mdof import graph_run as _g
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.kernel_data import chain_model, graph_model
 from rockarch.motion import GroundMotion

@@ -17,6 +17,7 @@ import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.collections import PolyCollection
@@ -28,6 +29,9 @@ from tqdm import tqdm
 
 from rockarch.output.figures import new_figure
 from rockarch.output.paths import atomic_write
+
+if TYPE_CHECKING:
+    from rockarch.mdof.simulate import MDOFResponse
 
 #: Joint state -> colour and legend text (state 0, closed, is not drawn).
 STATE_STYLE = {1: ("tab:red", "rotating about corner 0 (arch: intrados)"),
@@ -56,7 +60,7 @@ def _nice_floor(x: float) -> float:
     return max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= x)
 
 
-def _outlines(resp, q: np.ndarray) -> list[np.ndarray]:
+def _outlines(resp: MDOFResponse, q: np.ndarray) -> list[np.ndarray]:
     """Block outlines for the configuration ``q`` (nb, 3)."""
     a = resp.assembly
     out = []
@@ -70,7 +74,7 @@ def _outlines(resp, q: np.ndarray) -> list[np.ndarray]:
     return out
 
 
-def _joint_segment(resp, q: np.ndarray, k: int) -> np.ndarray:
+def _joint_segment(resp: MDOFResponse, q: np.ndarray, k: int) -> np.ndarray:
     """Joint k's two corners in configuration q, carried by the body on the tail side of
     its normal (the lower/left one), or by the other body for a joint on the ground."""
     a = resp.assembly
@@ -85,12 +89,12 @@ def _joint_segment(resp, q: np.ndarray, k: int) -> np.ndarray:
                     axis=1)
 
 
-def _config(resp, i: int, magnify: float) -> np.ndarray:
+def _config(resp: MDOFResponse, i: int, magnify: float) -> np.ndarray:
     q0 = resp.q[0]
     return q0 + magnify * (resp.q[i] - q0)
 
 
-def plan_frames(resp, fps: int, max_frames: int, magnify: float) -> FramePlan:
+def plan_frames(resp: MDOFResponse, fps: int, max_frames: int, magnify: float) -> FramePlan:
     """Frames at ``fps`` per simulated second (at most ``max_frames``), ending at the last
     record (t_overturn for a collapse); the held last frame's magnification is ``magnify``
     raised (to 1, 2 or 5 × 10^k) until its largest displacement is visible."""
@@ -109,12 +113,12 @@ def plan_frames(resp, fps: int, max_frames: int, magnify: float) -> FramePlan:
     moved = np.concatenate(_outlines(resp, resp.q[last])) - base
     disp = float(np.abs(moved).max())
     final = magnify
-    if disp > 0 and disp * magnify < FINAL_VISIBLE * size:
+    if disp > 1e-12 * size and disp * magnify < FINAL_VISIBLE * size:  # else: at rest
         final = max(magnify, _nice_floor(FINAL_VISIBLE * size / disp))
     return FramePlan(idx, np.maximum(np.round(dur, -1), 20.0), magnify, final)
 
 
-def _title(resp, i: int, n_open: int, magnify: float, final: bool) -> str:
+def _title(resp: MDOFResponse, i: int, n_open: int, magnify: float, final: bool) -> str:
     text = f"t = {resp.t[i]:.2f} s, open joints: {n_open}"
     if final:
         if resp.overturned:
@@ -142,7 +146,7 @@ class _Renderer:
     """The figure of an animation: static parts drawn once, :meth:`frame` redraws only the
     moving artists (animated=True) over the saved background and returns the pixels."""
 
-    def __init__(self, resp, plan: FramePlan) -> None:
+    def __init__(self, resp: MDOFResponse, plan: FramePlan) -> None:
         self.resp = resp
         self.fig = fig = new_figure((10, 4.1), dpi=DPI)
         ax, axg = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
@@ -226,7 +230,7 @@ def _palette(first: np.ndarray) -> Image.Image:
     return Image.fromarray(img).quantize(256, method=Image.Quantize.FASTOCTREE)
 
 
-def animate(resp, path: str | Path, *, fps: int = 20, max_frames: int = 150,
+def animate(resp: MDOFResponse, path: str | Path, *, fps: int = 20, max_frames: int = 150,
             magnify: float = 1.0, progress: bool | None = None) -> Path:
     """Write a GIF of an MDOF response (atomically).
 

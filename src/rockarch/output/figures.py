@@ -152,17 +152,27 @@ def record_label(name: str, width: int = 60) -> str:
     return "\n".join(textwrap.wrap(str(name), width)) or "?"
 
 
+#: Largest number of records named one by one in a site figure's legend.
+MAX_NAMED_RECORDS = 12
+
+
 def plot_site(ds: xr.Dataset) -> Figure:
     """The records' OAS boundaries of a site OAS, their envelope and percentile curve.
 
-    The legend sits below the axes and holds every record's full name (wrapped, never cut).
+    The legend sits below the axes and holds every record's full name (wrapped, never cut);
+    above :data:`MAX_NAMED_RECORDS` records they are thin grey lines with one entry.
     """
     fig = new_figure((7.5, 4.6))
     ax = fig.subplots()
     p = ds["p"].values
-    for k in range(ds.sizes["record"]):
-        ax.plot(p, ds["boundary"].values[k], lw=0.8,
-                label=record_label(ds["record_name"].values[k]))
+    n = ds.sizes["record"]
+    for k in range(n):
+        if n <= MAX_NAMED_RECORDS:
+            ax.plot(p, ds["boundary"].values[k], lw=0.8,
+                    label=record_label(ds["record_name"].values[k]))
+        else:
+            ax.plot(p, ds["boundary"].values[k], lw=0.6, color="0.65",
+                    label=f"{n} records" if k == 0 else None)
     ax.plot(p, ds["envelope"].values, "k-", lw=2, label="envelope")
     ax.plot(p, ds["characteristic"].values, "k--", lw=1.2,
             label=f"{ds.attrs['percentile']:g}th percentile")
@@ -171,5 +181,5 @@ def plot_site(ds: xr.Dataset) -> Figure:
     ax.set_title(ds.attrs["title"], fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14),
-              ncol=1 if ds.sizes["record"] <= 8 else 2, frameon=False)
+              ncol=1 if n <= 6 else 2, frameon=False)
     return fig

@@ -19,9 +19,10 @@ Each simulation is independent of the chunk it is run in, so every mode and ever
 gives bit-identical maps.
 
 Modules: :mod:`~rockarch.sweep.keys` (cache keys), :mod:`~rockarch.sweep.store` (the
-store), :mod:`~rockarch.sweep.executors` (serial, processes, Dask) and
-:mod:`~rockarch.sweep.run` (the run loop). The command-line options that choose them are
-read in :mod:`rockarch.cli._sweep`.
+store), :mod:`~rockarch.sweep.executors` (serial, processes, Dask),
+:mod:`~rockarch.sweep.workers` (one chunk, worker set-up), :mod:`~rockarch.sweep.run` (the
+run loop) and :mod:`~rockarch.sweep.limits` (grid limits). The command-line options that
+choose them are read in :mod:`rockarch.cli._sweep`.
 """
 
 from rockarch.sweep.executors import (
@@ -30,7 +31,6 @@ from rockarch.sweep.executors import (
     Executor,
     as_executor,
     check_scheduler,
-    run_chunk,
 )
 from rockarch.sweep.keys import STORE_FORMAT, chunk_key, code_digest, source_digest
 from rockarch.sweep.limits import (
@@ -49,6 +49,7 @@ from rockarch.sweep.store import (
     default_store_dir,
     store_info,
 )
+from rockarch.sweep.workers import run_chunk
 
 __all__ = ["CONNECT_TIMEOUT", "MAX_SIMULATIONS", "MAX_STEPS", "MODES", "STORE_FORMAT",
            "Executor", "Store", "StoreInfo", "StoreWarning", "as_executor", "as_store",

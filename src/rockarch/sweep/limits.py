@@ -8,7 +8,10 @@ into several commands (e.g. by p range), which the store makes free to resume an
 
 from __future__ import annotations
 
-#: Most simulations (grid cells, summed over the records of a site) of one sweep.
+from rockarch.limits import ENV, _limit
+
+#: Most simulations (grid cells, summed over the records of a site) of one sweep, unless
+#: the environment variable ROCKARCH_MAX_SIMULATIONS says otherwise.
 MAX_SIMULATIONS = 10_000_000
 #: Most values on one axis of a grid (--p-steps, --ratio-steps).
 MAX_STEPS = 100_000
@@ -24,13 +27,19 @@ def check_steps(option: str, n: int) -> int:
     return n
 
 
+def max_simulations() -> int:
+    """:data:`MAX_SIMULATIONS`, or the value of ``$ROCKARCH_MAX_SIMULATIONS``."""
+    return _limit("simulations", MAX_SIMULATIONS)
+
+
 def check_simulations(n: int, what: str) -> int:
     """A sweep of ``n`` simulations (``what`` says how they arise), if ``n`` <=
-    :data:`MAX_SIMULATIONS`; else ValueError naming the limit and what to do."""
-    if n > MAX_SIMULATIONS:
+    :func:`max_simulations`; else ValueError naming the limit and what to do."""
+    limit = max_simulations()
+    if n > limit:
         gb = n * BYTES_PER_SIMULATION / 1e9
         raise ValueError(f"the sweep has {what} = {n:,} simulations (~{gb:.3g} GB), above "
-                         f"the limit of {MAX_SIMULATIONS:,} per command: use fewer "
-                         "--p-steps/--ratio-steps, or split the p range over several "
-                         "commands (docs/sweeps.md, Limits)")
+                         f"the limit of {limit:,} per command: use fewer --p-steps/"
+                         "--ratio-steps, split the p range over several commands, or "
+                         f"raise {ENV['simulations']}")
     return n

@@ -11,6 +11,7 @@ import numpy as np
 from rockarch.sweep.executors import Executor
 from rockarch.sweep.keys import _base_hash, _key_of
 from rockarch.sweep.store import Store
+from rockarch.sweep.workers import run_system
 
 
 def run_chunks(system, motion, tasks: Sequence[tuple[np.ndarray, np.ndarray]], *,
@@ -50,7 +51,7 @@ def run_chunks(system, motion, tasks: Sequence[tuple[np.ndarray, np.ndarray]], *
     sub = [tasks[i] for i in todo]
     if executor is None:
         for j, (p, r) in enumerate(sub):
-            done(j, system.run(motion, p, r))
+            done(j, run_system(system, motion, p, r))
     else:
         executor.map(system, motion, sub, done)
     return results
