@@ -182,3 +182,39 @@ def test_fully_open_joint_separates_only_with_friction(mu):
         assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
     else:  # the hinge stops the base corner's sideways motion (r_y = -H/2 = -0.5 m)
         assert abs(vx[0] + 0.5 * om[0]) < 1e-6 and vx[0] < 1.0
+
+
+def test_wide_wall_at_rest_on_gauss_seidel():
+    # a 42-block running-bond wall (half-bandwidth 38 > KD_MAX: solved by Gauss–Seidel)
+    # on still ground stays at rest: no failed step, no rotation or slip above round-off
+    # (the sweeps stop at SWEEP_TOL·g·h; 1e-6 is far above the drift that leaves)
+    from rockarch.mdof.kernel_data import graph_model
+
+    a = bd.wall(4, 10, 0.4, 0.2, mu=0.6)
+    assert a.n_blocks == 42 and not graph_model(a).banded
+    r = mdof.simulate(a, motion.step(1e-9 * G, 0.2), t_free=1.0)
+    assert r.lcp_failures == 0 and not r.overturned
+    assert r.max_rotation_ratio < 1e-6 and r.max_slip < 1e-6
+    assert np.abs(r.q[-1] - r.q[0]).max() < 1e-6
+
+
+def test_wall_collapses_alike_on_both_solvers():
+    # a slender wall (one block wide, 1.2 m tall, ap,min = g/3) under a 0.9 g step pulse
+    # of 0.3 s collapses, on the exact banded solve and on Gauss–Seidel (forced) alike:
+    # the same collapse time within two steps, no failed Gauss–Seidel step
+    from rockarch.mdof import graph_run
+    from rockarch.mdof.kernel_data import graph_model
+
+    a = bd.wall(6, 1, 0.4, 0.2, mu=0.8)
+    assert a.ap_min == pytest.approx(G / 3, rel=1e-6)
+    step = motion.step(0.9 * G, 0.3)
+    h = 1e-3
+    res = []
+    for banded in (True, False):
+        m = graph_model(a)._replace(banded=banded)
+        res.append(graph_run.run(m, 1.0, step.t, step.a, 1.0, h, 2.0, step.duration, 1e-4, 0,
+                                 np.zeros(0), np.zeros((0, 2, 3)), np.zeros((0, 2), np.int8),
+                                 np.zeros(0)))
+    (s_b, t_b), (s_g, t_g, f_g) = res[0][:2], (res[1][0], res[1][1], res[1][7])
+    assert s_b == 1 and s_g == 1 and f_g == 0
+    assert abs(t_b - t_g) <= 2 * h

@@ -71,8 +71,11 @@ class GraphModel(NamedTuple):
 
 
 #: Largest half-bandwidth of W solved by the banded exact solve (cost n·kd² per
-#: factorisation); wider graphs use Gauss–Seidel.
-KD_MAX = 200
+#: factorisation, one per pivot, and a cold start pivots once per opening row); wider
+#: graphs use Gauss–Seidel. At kd = 38–47 (40-block walls) the banded solve is already 5–10×
+#: slower than Gauss–Seidel and fails steps on its pivot limit; the 14-block wall (kd = 32)
+#: and every chain and bridge of the tests stay banded.
+KD_MAX = 32
 
 
 def _half_band(order: np.ndarray, pairs: np.ndarray) -> int:
