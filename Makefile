@@ -25,10 +25,7 @@ test-all: $(VENV)/.installed
 	$(BIN)/python -m pytest -q
 
 bench: $(VENV)/.installed
-	$(BIN)/python benchmarks/block_oas.py
-	$(BIN)/python benchmarks/arch_lp.py
-	$(BIN)/python benchmarks/fourhinge.py
-	$(BIN)/python benchmarks/sweep.py
+	for f in benchmarks/*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
 
 # Siconos oracle (docs/validation.md): installs python3-siconos for /usr/bin/python3 where
 # apt-get can, and skips cleanly where it cannot.

@@ -1,7 +1,7 @@
 #!/bin/bash
 # Exit status, wall time and peak RSS of the inputs of docs/limits.md, one Markdown row
 # each: benchmarks/limits_rss.sh [SCRATCH_DIR]  (ROCKARCH=path/to/rockarch to choose one)
-OUT=${1:-$(mktemp -d)}; cd "$OUT"
+OUT=${1:-$(mktemp -d)}; mkdir -p "$OUT"; cd "$OUT" || exit 2
 RA=${ROCKARCH:-rockarch}
 B="simulate block --alpha 0.15 --p 2 --ratio 2"
 A="--shape catenary --span 10 --rise 3 --thickness 0.25 --blocks 20 --ratio 1.5"

@@ -54,8 +54,11 @@ def examples(text: str) -> list[tuple[list[str], str, float]]:
 
 
 EXAMPLES = examples(README.read_text(encoding="utf-8"))
+#: Files and folders that one example writes and others read.
+WRITTEN = {"site.nc": ["site-oas"], "synth/": ["records", "synth"]}
 #: Quick examples that need no file written by another one (``design --site site.nc``).
-QUICK = [e for e in EXAMPLES if e[2] <= 3 and "--site" not in e[0]]
+QUICK = [e for e in EXAMPLES if e[2] <= 3
+         and not any(f in e[0] and e[0][:len(w)] != w for f, w in WRITTEN.items())]
 
 
 def _argv(argv: list[str]) -> list[str]:

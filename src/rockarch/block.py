@@ -145,12 +145,7 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
     om0 = float(theta_dot0)
     if not math.isfinite(om0):
         raise ValueError(f"theta_dot0 must be finite, got {theta_dot0!r}")
-    if motion is None:
-        tk, ak, name, duration = np.zeros(2), np.zeros(2), "free rocking", 0.0
-    else:
-        tk = np.ascontiguousarray(motion.t, dtype=float)
-        ak = np.ascontiguousarray(motion.a, dtype=float) / block.g
-        name, duration = motion.name, motion.duration
+    tk, ak, name, duration = _k.motion_arrays(motion, block.g, "free rocking")
     cap = history_capacity(tk.size, duration + t_free, block.p, h_factor)
     model, prm, tab, amin, level, e = block.kernel_args()
     status, t_ov, mx, t_end, t, th, om, imp, stride = _k.run_recorded(

@@ -203,13 +203,30 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         return sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
                                 bar=bar)
 
+    # chunks of a bisection round: two per worker of an executor (every chunk carries the
+    # suite's records to its worker), one in this process
+    n_round = 1 if executor is None else min(2 * executor.n_workers, len(parts))
+
+    def run_round(tasks):
+        """A bisection round (one simulation per record) in ``n_round`` chunks, so that the
+        records of a round run in parallel on an executor (the OAS code groups at least 16
+        cheap simulations a chunk, which leaves a few records in one chunk)."""
+        flat_rows = np.concatenate([np.ravel(t[0]) for t in tasks])
+        flat_ratio = np.concatenate([np.ravel(t[1]) for t in tasks])
+        pieces = np.array_split(np.arange(flat_rows.size), min(n_round, flat_rows.size))
+        res = run([(flat_rows[k], flat_ratio[k]) for k in pieces])
+        o = np.concatenate([np.ravel(r[0]) for r in res])
+        m = np.concatenate([np.ravel(r[1]) for r in res])
+        bounds = np.cumsum([0] + [np.size(t[0]) for t in tasks])
+        return [(o[a:b], m[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+
     try:
         with tqdm(total=over.size, desc=scan.name, unit="sim", disable=not progress,
                   leave=False) as bar:
             grid = [np.meshgrid(rows[idx], ratio, indexing="ij") for idx in parts]
             for idx, (o, _) in zip(parts, run(grid), strict=True):
                 over[idx] = o
-            collapse = _refine_boundary(run, rows, ratio, over, tol, bar, len(parts))
+            collapse = _refine_boundary(run_round, rows, ratio, over, tol, bar, len(parts))
     finally:
         if owned:
             executor.close()

@@ -279,12 +279,7 @@ def simulate(mech: SDOFMechanism, motion: GroundMotion | None, *, p: float | Non
     model, prm, tab, amin, level, e = mech.kernel_args()
     lim = mech.plus.delta if u0 >= 0 else mech.minus.delta
     u0 = in_range("u0", u0, -lim, lim, lo_open=True, hi_open=True)
-    if motion is None:
-        tk, ak, name, duration = np.zeros(2), np.zeros(2), "free motion", 0.0
-    else:
-        tk = np.ascontiguousarray(motion.t, dtype=float)
-        ak = np.ascontiguousarray(motion.a, dtype=float) / mech.g
-        name, duration = motion.name, motion.duration
+    tk, ak, name, duration = _k.motion_arrays(motion, mech.g, "free motion")
     c = (p / mech.p) ** 2 * mech.g
     cap = history_capacity(tk.size, duration + t_free, p, h_factor)
     status, t_c, mx, t_end, t, u, ud, imp, stride = _k.run_recorded(

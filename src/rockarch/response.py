@@ -3,7 +3,7 @@
 A simulation of a rigid block, of an SDOF mechanism (four-hinge arch, rocking frame, any
 (p, delta, ap,min) mechanism) or of an MDOF assembly returns a :class:`Response` (or a
 subclass carrying the kind's own time histories); many simulations of one motion return a
-:class:`Batch`. The verdict is the same everywhere (docs/theory.md, Eq. 3):
+:class:`Batch`. The verdict is the same everywhere (docs/theory.md §0, Eqs. 1.5 and 3.5):
 
 - ``overturned``: the structure collapsed (block: |theta| reached alpha; mechanism: |u|
   reached delta; MDOF: the frozen-configuration collapse test of docs/mdof.md);

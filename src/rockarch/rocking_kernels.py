@@ -50,6 +50,15 @@ _NEWTON_ITERS = 60
 _NO_LIMIT = np.iinfo(np.int64).max
 
 
+def motion_arrays(motion, g: float, free_name: str) -> tuple:
+    """(knot times, a_g/g at the knots, name, duration) of a motion for :func:`run`;
+    ``motion=None``: no ground motion (free motion named ``free_name``)."""
+    if motion is None:
+        return np.zeros(2), np.zeros(2), free_name, 0.0
+    return (np.ascontiguousarray(motion.t, dtype=float),
+            np.ascontiguousarray(motion.a, dtype=float) / g, motion.name, motion.duration)
+
+
 @nb.njit(cache=True)
 def _rhs(model, th, om, s, ag, c, prm, tab):
     """theta'' on side s; c = p² (block) or k²·g (table); ag = a_g/g."""

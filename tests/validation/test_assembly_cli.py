@@ -40,7 +40,9 @@ def test_contract_single_block_with_friction(tmp_path):
                  str(rec), "--units", "g", "--ratio", "2", "--json"])
     # --ratio multiplies the friction-aware ap_min: min(mu, B/H)·g = 0.2 g
     assert out["ap_min"] == pytest.approx(0.2 * G, rel=1e-7)
-    assert "overturned" in out
+    # PGA 0.4 g < B/H = 0.5 g: it cannot rock (sliding caps the force at 0.2 g), it slides
+    assert out["overturned"] is False and out["sliding_contacts_max"] == 1
+    assert out["max_slip"] > 0.01
     # without --friction: the rocking ap_min, B/H·g
     out = _json(["simulate", "mdof", "--column", "0.5,1.0", "--record", str(rec), "--units",
                  "g", "--ratio", "0.5", "--json"])
@@ -81,14 +83,15 @@ def test_wall_colonnade_and_assembly_file(tmp_path):
     assert a.ap_min == pytest.approx(0.3 * G, rel=1e-7)
 
 
-def test_header_names_the_structure(tmp_path):
+def test_header_names_the_structure_and_mechanism_png(tmp_path):
+    png = tmp_path / "mech.png"
     res = runner.invoke(app, ["simulate", "mdof", "--colonnade", "2", "--block", "0.3,2",
                               "--bay", "1", "--lintel", "0.4", "--friction", "0.6", *PULSE,
-                              "--ratio", "0.5"])
-    if res.exit_code == 0:  # the engine runs general graphs
-        assert "trilithon" in res.output and "friction 0.6" in res.output
-    else:  # before the general engine: never a traceback
-        assert res.exit_code == 2 and res.stderr.startswith("error: ")
+                              "--ratio", "0.5", "--mechanism", str(png)])
+    assert res.exit_code == 0, res.output
+    assert "trilithon" in res.output and "friction 0.6" in res.output
+    assert "safe" in res.output  # half its collapse acceleration
+    assert f"wrote {png}" in res.output and png.stat().st_size > 5000
 
 
 def test_bad_input_one_line(tmp_path):

@@ -24,7 +24,7 @@ def _rigid(points: np.ndarray, pivot: np.ndarray, angle: float, new_pivot: np.nd
 
 
 def displaced_parts(res: ArchMechanism, u: float) -> list[np.ndarray]:
-    """Outlines (closed polygons) of the three moving parts at rotation u (theory Sect. 5)."""
+    """Outlines (closed polygons) of the three moving parts at rotation u (paper Sect. 5)."""
     v = res.thrust.voussoirs
     mech = res.mechanism
     k = kinematics(mech, u)

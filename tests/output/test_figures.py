@@ -15,7 +15,7 @@ from rockarch.output import figures, html
 from rockarch.output.arch_plots import mechanism_figure, plot_mechanism
 from rockarch.output.tables import boundary_table
 
-SRC = Path(__file__).parents[1] / "src" / "rockarch"
+SRC = Path(__file__).parents[2] / "src" / "rockarch"
 
 
 def test_no_backend_switch_and_no_pyplot_in_the_package():
