@@ -11,8 +11,8 @@ Gauss–Seidel, the method of Jean and Moreau's NSCD (LMGC90, Siconos): joint af
 the joint's 3×3 problem is solved *exactly* with the others' impulses fixed, by enumerating
 its 4 (μ = ∞) or 12 contact states (each corner closed/open × stick/slip+/slip−), each a
 3×3 linear solve; sweeps alternate direction and are warm-started from the previous step.
-Sign conditions of the local solves hold within ``NSGS_TOL``·g·h; the sweeps stop when a
-sweep changes no joint's relative velocity by more than ``SWEEP_TOL``·g·h; a step that does
+The sweeps stop when a sweep changes no joint's relative velocity by more than
+``SWEEP_TOL``·g·h, the tolerance of the local solves' sign conditions too; a step that does
 not converge within ``NSGS_MAX_SWEEPS`` sweeps counts as a failure (``lcp_failures``).
 """
 
@@ -23,7 +23,7 @@ import math
 import numba as nb
 import numpy as np
 
-#: Sign tolerance of the local solves (and of the banded solve, graph_run), relative to g·h.
+#: Sign tolerance of the banded solve (graph_run), relative to g·h.
 NSGS_TOL = 1e-6
 #: Convergence of the Gauss–Seidel sweeps: largest change of a contact velocity in a sweep,
 #: relative to g·h. Gauss–Seidel converges slowly on a hyperstatic graph (a wall), so the
@@ -198,6 +198,8 @@ def nsgs(nj, ba, bb, ja, jb, wl, bias, mu, im, ii, vx, vy, om, lam, case, tol_u,
     a = np.empty((3, 3))
     r = np.empty(3)
     sol = np.empty(3)
+    su = tol_u * (SWEEP_TOL / NSGS_TOL)
+    sl = tol_l * (SWEEP_TOL / NSGS_TOL)
     for sweep in range(NSGS_MAX_SWEEPS):
         worst = 0.0
         for kk in range(nj):
@@ -207,7 +209,7 @@ def nsgs(nj, ba, bb, ja, jb, wl, bias, mu, im, ii, vx, vy, om, lam, case, tol_u,
             for i in range(3):
                 q[i] = u[i] - (w[i, 0] * lam[3 * k] + w[i, 1] * lam[3 * k + 1]
                                + w[i, 2] * lam[3 * k + 2])
-            c = local_solve(w, q, mu[k], max(case[k], 0), ln, a, r, sol, tol_u, tol_l)
+            c = local_solve(w, q, mu[k], max(case[k], 0), ln, a, r, sol, su, sl)
             case[k] = c if c >= 0 else -1 - c
             for i in range(3):
                 d[i] = ln[i] - lam[3 * k + i]
@@ -217,6 +219,6 @@ def nsgs(nj, ba, bb, ja, jb, wl, bias, mu, im, ii, vx, vy, om, lam, case, tol_u,
                     worst = du
                 lam[3 * k + i] = ln[i]
             apply_impulse(k, ba, bb, ja, jb, d, im, ii, vx, vy, om)
-        if worst <= tol_u * (SWEEP_TOL / NSGS_TOL):
+        if worst <= su:
             return sweep + 1
     return -NSGS_MAX_SWEEPS
