@@ -12,7 +12,16 @@ from rockarch.arch.fourhinge import analyse
 from rockarch.arch.geometry import MASS_MODELS, make_arch
 from rockarch.arch.thrust import minimum_thickness
 from rockarch.cli._app import app
-from rockarch.cli._common import G_OPT, JSON_OPT, Shape, guarded, print_json
+from rockarch.cli._common import (
+    ARCH_RISE_OPT,
+    ARCH_SHAPE_OPT,
+    ARCH_SPAN_OPT,
+    G_OPT,
+    JSON_OPT,
+    Shape,
+    guarded,
+    print_json,
+)
 from rockarch.output import check_outputs
 from rockarch.systems import check_blocks
 
@@ -20,9 +29,7 @@ from rockarch.systems import check_blocks
 @app.command(short_help="Arch statics: ap,min, four hinges, p, delta, minimum thickness.")
 @guarded
 def arch(
-    shape: Shape = typer.Option(..., help="Arch shape."),
-    span: float = typer.Option(..., help="Span l of the axis [m]."),
-    rise: float = typer.Option(..., help="Rise f of the axis [m]."),
+    shape: Shape = ARCH_SHAPE_OPT, span: float = ARCH_SPAN_OPT, rise: float = ARCH_RISE_OPT,
     thickness: float = typer.Option(None, help="Uniform thickness d normal to the axis [m]."),
     blocks: int = typer.Option(None, help="Voussoirs (critical mechanism); default the "
                                "continuous arch (critical optimal mechanism)."),

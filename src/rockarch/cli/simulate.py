@@ -11,6 +11,10 @@ from rockarch._validate import positive
 from rockarch.cli._app import app, simulate_app
 from rockarch.cli._common import (
     ABUT_OPT,
+    ARCH_RISE_OPT,
+    ARCH_SHAPE_OPT,
+    ARCH_SPAN_OPT,
+    ARCH_THICK_OPT,
     ASSEMBLY_OPT,
     BAY_OPT,
     BLOCK_OPT,
@@ -109,10 +113,8 @@ def simulate_block(
 @simulate_app.command("fourhinge")
 @guarded
 def simulate_fourhinge(
-    shape: Shape = typer.Option(..., help="Arch shape."),
-    span: float = typer.Option(..., help="Span l of the axis [m]."),
-    rise: float = typer.Option(..., help="Rise f of the axis [m]."),
-    thickness: float = typer.Option(..., help="Uniform thickness d [m]."),
+    shape: Shape = ARCH_SHAPE_OPT, span: float = ARCH_SPAN_OPT, rise: float = ARCH_RISE_OPT,
+    thickness: float = ARCH_THICK_OPT,
     blocks: int = typer.Option(None, help="Voussoirs (critical mechanism); default the "
                                "continuous arch (critical optimal mechanism)."),
     signal: Signal = SIGNAL_OPT, period: float = PERIOD_OPT, cycles: int = CYCLES_OPT,

@@ -13,6 +13,10 @@ from rockarch.arch.geometry import make_arch
 from rockarch.arch.replacement import RULES
 from rockarch.cli._app import app
 from rockarch.cli._common import (
+    ARCH_RISE_OPT,
+    ARCH_SHAPE_OPT,
+    ARCH_SPAN_OPT,
+    ARCH_THICK_OPT,
     DASK_WORKERS_OPT,
     G_OPT,
     JSON_OPT,
@@ -96,10 +100,8 @@ def site_oas(
 @app.command(short_help="Largest safe PGA of an arch at a site (paper Sect 9 method).")
 @guarded
 def design(
-    shape: Shape = typer.Option(..., help="Arch shape."),
-    span: float = typer.Option(..., help="Span l of the axis [m]."),
-    rise: float = typer.Option(..., help="Rise f of the axis [m]."),
-    thickness: float = typer.Option(..., help="Uniform thickness d [m]."),
+    shape: Shape = ARCH_SHAPE_OPT, span: float = ARCH_SPAN_OPT, rise: float = ARCH_RISE_OPT,
+    thickness: float = ARCH_THICK_OPT,
     site_file: Path = typer.Option(None, "--site", help="Site OAS file (rockarch site-oas)."),
     records: list[Path] = typer.Option(None, "--records", help="Instead of --site: records "
                                        "(folder or files); the site OAS, its characteristic "
