@@ -19,9 +19,11 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from rockarch import __version__, spectra, systems
+from rockarch import __version__, spectra, sweep, systems
+from rockarch.charsite import CURVES
 from rockarch.constants import G_STANDARD, OAS_TOL
 from rockarch.motion import GroundMotion
+from rockarch.suite import read_suite, record_files
 from rockarch.sweep.limits import check_simulations
 
 KIND = "rockarch-site-oas"
@@ -35,7 +37,6 @@ PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 def record_paths(paths) -> list[Path]:
     """Expand files and folders (``.AT2`` and two-column records inside, sorted) into record
     files: :func:`rockarch.suite.record_files` (a ``_SearchResults.csv`` is skipped)."""
-    from rockarch.suite import record_files
 
     return record_files(paths)[0]
 
@@ -45,7 +46,6 @@ def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], l
     vertical components left out as every ``--records``) and their file hashes; reject
     implausible PGAs (wrong units) and a record given twice (the same samples under two
     names: it would count twice in the percentile)."""
-    from rockarch.suite import read_suite
 
     motions, hashes, seen = [], [], {}
     for rec in read_suite(paths, units=units):
@@ -84,7 +84,6 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     check_simulations(len(motions) * n_p * n_r,
                       f"{len(motions)} records × {n_p} p × {n_r} ratio values")
     system = systems.BlockSystem(alpha=alpha, **system_kw)
-    from rockarch import sweep
 
     executor, owned = sweep.as_executor(executor)
     store = sweep.as_store(store)
@@ -157,7 +156,6 @@ def curve_at(ds: xr.Dataset, p: float, curve: str = "envelope") -> tuple[float, 
     Returns (ratio, is_lower_bound): where no record overturns within the ratio range the
     largest ratio of the range is used, a safe lower bound of the true value.
     """
-    from rockarch.charsite import CURVES
 
     if curve not in CURVES:
         raise ValueError(f"curve must be one of {', '.join(CURVES)}, got {curve!r}")

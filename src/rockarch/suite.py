@@ -20,9 +20,12 @@ from pathlib import Path
 
 import numpy as np
 
+from rockarch import intensity
 from rockarch.constants import G_STANDARD
 from rockarch.motion import GroundMotion
+from rockarch.output import atomic_write
 from rockarch.records import read_record
+from rockarch.velocity_pulse import baker_pulse
 
 #: File suffixes read from a folder as two-column records (``.AT2`` is always read).
 TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
@@ -412,8 +415,6 @@ def describe(suite: Suite, periods: Sequence[float] | None = None,
     :class:`rockarch.intensity.IntensityMeasures` (``sa`` aligned with ``periods``) and the
     Baker (2007) pulse classification (``pulse_indicator``, ``tp`` [s], ``pulse_like``,
     ``classification``, :mod:`rockarch.velocity_pulse`)."""
-    from rockarch import intensity
-    from rockarch.velocity_pulse import baker_pulse
 
     per = intensity.PERIODS if periods is None else periods
     zeta = intensity.DAMPING if damping is None else damping
@@ -451,7 +452,6 @@ def write_at2(path: str | Path, motion: GroundMotion, *, event: str = "", date: 
              f"{event}, {date}, {station}, {component}",
              "ACCELERATION TIME SERIES IN UNITS OF G",
              f"NPTS={vals.size:7d}, DT={dt:10.7f} SEC", *rows]
-    from rockarch.output import atomic_write
 
     text = "\n".join(lines) + "\n"
     return atomic_write(Path(path), lambda tmp: tmp.write_text(text, encoding="latin-1"))

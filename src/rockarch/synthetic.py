@@ -29,7 +29,10 @@ from scipy import optimize, special, stats
 
 from rockarch._validate import in_range, positive
 from rockarch.constants import G
+from rockarch.intensity import pgv
 from rockarch.motion import GroundMotion
+from rockarch.output import check_output_dir, write_text
+from rockarch.suite import from_motions, write_at2
 
 #: Default time step of synthetic records [s].
 DT = 0.01
@@ -260,7 +263,6 @@ PULSE_RANGES = {"tp": ("lognormal", 2.0, 0.5), "gamma": ("uniform", 1.5, 2.5),
 
 def draw_pulse(rng: np.random.Generator, motion: GroundMotion, t_mid: float) -> MPPulse:
     """A pulse from :data:`PULSE_RANGES` for ``motion`` (whose PGV sets its amplitude)."""
-    from rockarch.intensity import pgv
 
     r = PULSE_RANGES
     tp = min(max(r["tp"][1] * math.exp(r["tp"][2] * rng.standard_normal()), 0.5), 8.0)
@@ -333,7 +335,6 @@ def synthetic_suite(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = 
                     pulse_fraction: float = 0.0):
     """A :class:`rockarch.suite.Suite` of ``n`` synthetic records (see
     :func:`synthetic_motions`); each record's model parameters are in ``motion.meta``."""
-    from rockarch.suite import from_motions
 
     return from_motions(synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
                                           pulse_fraction=pulse_fraction))
@@ -350,8 +351,6 @@ def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
     :data:`PARAMETERS_FILE`. Returns the record paths."""
     from pathlib import Path
 
-    from rockarch.output import check_output_dir, write_text
-    from rockarch.suite import write_at2
 
     directory = Path(directory)
     check_output_dir(directory)

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import fft
 
+from rockarch.intensity import uniform_samples
 from rockarch.motion import GroundMotion
 
 #: Number of wavelets summed into the pulse (Baker 2007).
@@ -127,7 +128,6 @@ def baker_pulse(motion: GroundMotion, *, tp_min: float = 0.2, tp_max: float = 15
     Candidate pulse periods are ``n_periods`` log-spaced values in [tp_min, tp_max] (capped
     at the record's duration); their spacing bounds the resolution of Tp.
     """
-    from rockarch.intensity import uniform_samples
 
     dt, a = uniform_samples(motion)
     v = np.concatenate([[0.0], np.cumsum(0.5 * dt * (a[:-1] + a[1:]))])

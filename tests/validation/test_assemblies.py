@@ -200,7 +200,7 @@ def test_supports_move_with_the_ground():
 
 
 def test_trilithon_mechanism_and_drawing(tmp_path):
-    from rockarch.mdof.collapse_plot import plot_collapse
+    from rockarch.output.collapse_plots import plot_collapse
 
     tri = bd.colonnade(2, 0.3, 2.0, 1.0, 0.4)
     c = statics.collapse(tri)

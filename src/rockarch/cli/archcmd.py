@@ -23,6 +23,7 @@ from rockarch.cli._common import (
     print_json,
 )
 from rockarch.output import check_outputs
+from rockarch.output.arch_plots import plot_mechanism
 from rockarch.systems import check_blocks
 
 
@@ -81,7 +82,6 @@ def arch(
                   mass_model=mass_model)
     res = analyse(a, blocks, g=g, direction=direction)
     if plot:
-        from rockarch.output.arch_plots import plot_mechanism
 
         plot_mechanism(res, plot)
     if json_out:

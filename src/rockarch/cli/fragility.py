@@ -17,6 +17,8 @@ from rockarch.cli._app import app
 from rockarch.cli._common import Shape, System, echo_err, guarded, value
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
+from rockarch.output.figures import save_figure
+from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
 
@@ -33,7 +35,6 @@ def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
     """--im-range LO,HI in display units (g for pga and sa, m/s for pgv) → SI."""
     if text is None:
         return None
-    from rockarch.plot_fragility import display_units
 
     vals = cc.float_list("--im-range", text)
     if vals.size != 2 or not (0 < vals[0] < vals[1]):
@@ -130,8 +131,6 @@ def fragility(
         echo_err(f"warning: {exc}; no lognormal fit")
         frag = fr.Fragility(res, None, {})
     if plot is not None:
-        from rockarch.output.figures import save_figure
-        from rockarch.plot_fragility import plot_fragility
 
         save_figure(plot_fragility(frag, rng), plot)
     if json_out:

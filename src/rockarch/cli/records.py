@@ -12,6 +12,8 @@ from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
 from rockarch.constants import G_STANDARD
 from rockarch.output import check_outputs
+from rockarch.output.figures import save_figure
+from rockarch.output.suite_plots import plot_spectra
 from rockarch.suite import describe, read_suite
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
@@ -52,8 +54,6 @@ def info(
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
     if plot is not None:
-        from rockarch.output.figures import save_figure
-        from rockarch.plot_suite import plot_spectra
 
         save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:

@@ -9,6 +9,7 @@ import typer
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, echo_err, guarded, print_json
 from rockarch.output import check_outputs
+from rockarch.reproduce import reproduce
 
 
 @app.command("reproduce", short_help="The paper's tables and figures, paper vs computed.")
@@ -20,7 +21,6 @@ def reproduce_command(
 ) -> None:
     """The paper's tables and figures (Figs. 2-3, Tables 1-2, Figs. 15-17 and 19, Sect. 9)
     into OUT, with an index.html showing paper vs computed side by side."""
-    from rockarch.reproduce import reproduce
 
     check_outputs((out, "--out", "dir"))
     reproduce(out, quick=quick, log=echo_err)

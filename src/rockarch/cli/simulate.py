@@ -54,6 +54,10 @@ from rockarch.cli._common import (
     value,
 )
 from rockarch.output import check_outputs
+from rockarch.output.animation import animate as write_gif
+from rockarch.output.animation import check_options
+from rockarch.output.collapse_plots import plot_collapse
+from rockarch.output.figures import plot_response, save_figure
 from rockarch.systems import scale_to_ratio
 from rockarch.systems import system as make_system
 
@@ -65,7 +69,6 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
     resp = sysobj.simulate(shape, ratio=ratio)
     if plot is not None:
-        from rockarch.output.figures import plot_response, save_figure
 
         save_figure(plot_response(resp, mot), plot)
     s = {**resp.to_dict(), **(extra or {})}
@@ -227,7 +230,6 @@ def simulate_mdof(
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
                           t_free, h_factor, gap_tol)
     if mechanism is not None:
-        from rockarch.mdof.collapse_plot import plot_collapse
 
         plot_collapse(sysobj.assembly, mechanism)
     _run(sysobj, _mdof_header(sysobj.assembly), signal, period, cycles, record, units, ratio,
@@ -264,8 +266,6 @@ def animate(
     json_out: bool = JSON_OPT,
 ) -> None:
     """Animate an MDOF arch or column on a ground motion: blocks, open joints, a_g(t)."""
-    from rockarch.output.animation import animate as write_gif
-    from rockarch.output.animation import check_options
 
     check_options(fps, frames, magnify)
     check_outputs((out, "--out", "gif"))

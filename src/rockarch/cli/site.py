@@ -7,10 +7,13 @@ from pathlib import Path
 
 import typer
 
+from rockarch import charsite
+from rockarch import fragility as fr
 from rockarch import site as site_mod
 from rockarch._validate import positive
 from rockarch.arch.geometry import make_arch
 from rockarch.arch.replacement import RULES
+from rockarch.charsite import characteristic
 from rockarch.cli._app import app
 from rockarch.cli._common import (
     ARCH_RISE_OPT,
@@ -36,6 +39,10 @@ from rockarch.cli._common import (
 from rockarch.cli._sweep import open_sweep
 from rockarch.design import design_check
 from rockarch.output import check_outputs, staged
+from rockarch.output.figures import plot_site, save_figure
+from rockarch.output.fragility_plots import fragility_html
+from rockarch.output.report import write_report
+from rockarch.suite import read_suite
 
 
 @app.command("site-oas", short_help="Site OAS of a set of records: envelope and percentile.")
@@ -78,13 +85,11 @@ def site_oas(
                                tol=tol, hashes=hashes, t_free=t_free,
                                progress=sys.stderr.isatty(), executor=executor,
                                store=chunk_store)
-    from rockarch.charsite import characteristic
 
     ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
     with staged(out, plot) as (out_tmp, plot_tmp):
         site_mod.save(ds, out_tmp)
         if plot is not None:
-            from rockarch.output.figures import plot_site, save_figure
 
             save_figure(plot_site(ds), plot_tmp)
     if json_out:
@@ -137,8 +142,6 @@ def design(
     if save_site is not None and not records:
         raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
     if records:
-        from rockarch import charsite
-        from rockarch.suite import read_suite
 
         suite = read_suite(records)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
@@ -158,18 +161,15 @@ def design(
                  "range; the result is a lower bound")
     extra, html_extra = {}, ""
     if records:
-        from rockarch import fragility as fr
 
         frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
                                  alpha=float(site_ds.attrs["alpha"]), names=suite.names,
                                  ratio=site_ds["ratio"].values)
         extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
         if report is not None:
-            from rockarch.plot_fragility import fragility_html
 
             html_extra = fragility_html(frag, extra["fragility"], suite)
     if report is not None:
-        from rockarch.output.report import write_report
 
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} "

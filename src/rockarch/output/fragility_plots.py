@@ -7,6 +7,8 @@ import numpy as np
 from rockarch.constants import G_STANDARD
 from rockarch.fragility import Fragility
 from rockarch.output.figures import subplots
+from rockarch.output.html import inline_figure, key_value_table
+from rockarch.output.suite_plots import plot_spectra
 
 #: Plot units of each intensity measure: (label, factor from SI).
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
@@ -68,11 +70,9 @@ def fragility_html(frag: Fragility, summary: dict, suite=None) -> str:
     response spectra (Sa/PGA, if ``suite`` is given), then the replacement's fragility:
     the curve with its band and points, θ, β and the probabilities of
     :func:`rockarch.fragility.design_summary`."""
-    from rockarch.output.html import inline_figure, key_value_table
 
     spectra = ""
     if suite is not None:
-        from rockarch.plot_suite import plot_spectra
 
         spectra = ("<h2>Response spectra of the records</h2>\n"
                    f"{inline_figure(plot_spectra(suite), 'response spectra')}\n")
