@@ -82,7 +82,6 @@ def arch(
                   mass_model=mass_model)
     res = analyse(a, blocks, g=g, direction=direction)
     if plot:
-
         plot_mechanism(res, plot)
     if json_out:
         print_json(res.to_dict())

@@ -131,7 +131,6 @@ def fragility(
         echo_err(f"warning: {exc}; no lognormal fit")
         frag = fr.Fragility(res, None, {})
     if plot is not None:
-
         save_figure(plot_fragility(frag, rng), plot)
     if json_out:
         cc.print_json(frag.to_dict())

@@ -124,7 +124,6 @@ def oas(
         if out is not None:
             spectra.save(ds, out_tmp)
         if plot is not None:
-
             save_figure(plot_oas(ds).figure, plot_tmp)
     if json_out:
         print_json({

@@ -54,7 +54,6 @@ def info(
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping)
     if plot is not None:
-
         save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),

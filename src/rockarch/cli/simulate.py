@@ -69,7 +69,6 @@ def _run(sysobj, header: str, signal, period, cycles, record, units, ratio, plot
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
     resp = sysobj.simulate(shape, ratio=ratio)
     if plot is not None:
-
         save_figure(plot_response(resp, mot), plot)
     s = {**resp.to_dict(), **(extra or {})}
     if json_out:
@@ -230,7 +229,6 @@ def simulate_mdof(
     sysobj = _mdof_system(shape, span, rise, thickness, blocks, mdof_structure(locals()), g,
                           t_free, h_factor, gap_tol)
     if mechanism is not None:
-
         plot_collapse(sysobj.assembly, mechanism)
     _run(sysobj, _mdof_header(sysobj.assembly), signal, period, cycles, record, units, ratio,
          plot, json_out, extra={"ap_min": sysobj.ap_min})

@@ -90,7 +90,6 @@ def site_oas(
     with staged(out, plot) as (out_tmp, plot_tmp):
         site_mod.save(ds, out_tmp)
         if plot is not None:
-
             save_figure(plot_site(ds), plot_tmp)
     if json_out:
         print_json({"records": list(ds["record_name"].values), "p": ds["p"].values,
@@ -142,7 +141,6 @@ def design(
     if save_site is not None and not records:
         raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
     if records:
-
         suite = read_suite(records)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
         with open_sweep(n_sims=n_sims, echo=echo_err) as (executor, chunk_store):
@@ -161,16 +159,13 @@ def design(
                  "range; the result is a lower bound")
     extra, html_extra = {}, ""
     if records:
-
         frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
                                  alpha=float(site_ds.attrs["alpha"]), names=suite.names,
                                  ratio=site_ds["ratio"].values)
         extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
         if report is not None:
-
             html_extra = fragility_html(frag, extra["fragility"], suite)
     if report is not None:
-
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} "
                + (f"--site {site_file}" if site_file else

@@ -73,7 +73,6 @@ def fragility_html(frag: Fragility, summary: dict, suite=None) -> str:
 
     spectra = ""
     if suite is not None:
-
         spectra = ("<h2>Response spectra of the records</h2>\n"
                    f"{inline_figure(plot_spectra(suite), 'response spectra')}\n")
 
