@@ -17,6 +17,10 @@ Units are SI (m, s, m/s², rad); sign conventions in docs/theory.md.
 
 __version__ = "0.1.0"
 
+from rockarch import _jit_cache  # noqa: E402
+
+_jit_cache.use_digest_cache()  # before any numba kernel is defined
+
 from rockarch.arch.geometry import make_arch  # noqa: E402
 from rockarch.constants import G  # noqa: E402
 from rockarch.motion import SIGNALS, GroundMotion  # noqa: E402

@@ -11,44 +11,25 @@ from __future__ import annotations
 
 import dataclasses
 import enum
-import functools
 import hashlib
 import pickle
-from pathlib import Path
 
 import numpy as np
 
-from rockarch import __version__
+from rockarch import __version__, _jit_cache
+from rockarch._jit_cache import PACKAGE_ROOT, source_digest  # noqa: F401 - re-exported
 
 #: Version of the chunk file format and of the key recipe (part of every key).
 #: 2: the key holds :func:`code_digest`.
 STORE_FORMAT = 2
-#: The installed rockarch package (the folder whose ``.py`` files :func:`code_digest` reads).
-PACKAGE_ROOT = Path(__file__).resolve().parent.parent
-
-
-def source_digest(root: Path) -> str:
-    """SHA-256 (hex) of every ``.py`` file under ``root``: relative path and bytes, in
-    sorted order (compiled caches, data files and other files are not part of it)."""
-    root = Path(root)
-    h = hashlib.sha256()
-    for path in sorted(root.rglob("*.py"), key=lambda q: q.relative_to(root).as_posix()):
-        if "__pycache__" in path.parts:
-            continue
-        data = path.read_bytes()
-        h.update(f"{path.relative_to(root).as_posix()}\0{len(data)}\0".encode())
-        h.update(data)
-    return h.hexdigest()
-
-
-@functools.cache
 def code_digest() -> str:
-    """:func:`source_digest` of the running rockarch package (computed once per process).
+    """:func:`~rockarch._jit_cache.source_digest` of the running rockarch package (computed
+    once per process; the numba cache follows the same digest).
 
     Part of every chunk key: any edit of the package's source, in a checkout, an editable
     install or a new release, changes every key, so the store never serves a result that
     the running code would not compute; unchanged code keeps its keys (cache hits)."""
-    return source_digest(PACKAGE_ROOT)
+    return _jit_cache.code_digest()
 
 
 def _feed(h, obj) -> None:

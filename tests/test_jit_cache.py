@@ -1,0 +1,31 @@
+"""Compiled kernels are cached per source digest: an edit of any module (not only of the
+file that defines a kernel) compiles afresh, so no stale machine code runs."""
+
+from __future__ import annotations
+
+import os
+import shutil
+
+import numba
+import pytest
+
+import rockarch
+from rockarch import _jit_cache
+
+
+@pytest.mark.skipif(bool(os.environ.get("NUMBA_CACHE_DIR")), reason="user's NUMBA_CACHE_DIR")
+def test_numba_cache_folder_is_named_by_the_source_digest():
+    assert numba.config.CACHE_DIR == str(_jit_cache.jit_cache_dir())
+    assert _jit_cache.jit_cache_dir().name == _jit_cache.code_digest()[:16]
+
+
+def test_editing_a_callee_module_changes_the_cache_folder(tmp_path):
+    """numba alone would keep graph_run's compiled code after an edit of graph_solver;
+    the digest of the whole package changes, and with it the folder."""
+    pkg = tmp_path / "rockarch"
+    shutil.copytree(os.path.dirname(rockarch.__file__), pkg,
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    before = _jit_cache.source_digest(pkg)
+    solver = pkg / "mdof" / "graph_solver.py"
+    solver.write_text(solver.read_text() + "\n# an edit\n")
+    assert _jit_cache.source_digest(pkg) != before
