@@ -127,8 +127,10 @@ def test_design_with_records(tmp_path):
                               "--thickness", "1", "--records", str(tmp_path), "--pga", "3",
                               "--curve", "simplified", "--json", "--report",
                               str(tmp_path / "r.html"), "--save-site",
-                              str(tmp_path / "site.nc")])
+                              str(tmp_path / "site.nc"), "--store", str(tmp_path / "store")])
     assert res.exit_code == 0, res.output
+    # the sweep options of oas: the site OAS's chunks went to the store given
+    assert any((tmp_path / "store").rglob("*")), "no chunk in --store"
     out = json.loads(res.stdout)
     f = out["fragility"]
     assert f["n_records"] == 2

@@ -129,9 +129,15 @@ def design(
                                          "mass) or original (the arch's mass on its axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
+    workers: int = WORKERS_OPT, scheduler: str = SCHEDULER_OPT,
+    dask_workers: int = DASK_WORKERS_OPT, store: Path = STORE_OPT,
+    no_store: bool = NO_STORE_OPT,
     json_out: bool = JSON_OPT,
 ) -> None:
-    """Largest safe PGA of an arch at a site (paper Sect. 9): replacement catenary, site OAS."""
+    """Largest safe PGA of an arch at a site (paper Sect. 9): replacement catenary, site OAS.
+
+    With --records the site OAS is computed on the sweep executor and store (the sweep
+    options as in oas)."""
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
@@ -143,7 +149,9 @@ def design(
     if records:
         suite = read_suite(records)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
-        with open_sweep(n_sims=n_sims, echo=echo_err) as (executor, chunk_store):
+        with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
+                        store_dir=store, no_store=no_store, n_sims=n_sims,
+                        echo=echo_err) as (executor, chunk_store):
             site_ds = charsite.site_from_records(suite, executor=executor, store=chunk_store,
                                                 progress=sys.stderr.isatty())
         if save_site is not None:
