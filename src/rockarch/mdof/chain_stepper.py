@@ -39,7 +39,7 @@ import numba as nb
 import numpy as np
 
 from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp
-from rockarch.mdof.kinematics import advance, cumint
+from rockarch.mdof.kinematics import advance, cap_projection_energy, count_joints, cumint
 
 CHECK_EVERY = 4
 #: The collapse test runs once a block has rotated by CHECK_FROM·delta_ref.
@@ -380,33 +380,12 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
                 v0 += mass[j] * y[j]
             _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb,
                      lb, rhs, mu, 100.0 * gtol)
-            # the projection must not add energy: a potential-energy gain is taken from the
-            # kinetic energy (it is O(h²) drift, not physics)
-            dv = -g * v0
-            ke = 0.0
-            for j in range(nbod):
-                dv += g * mass[j] * y[j]
-                ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
-            if dv > 0.0 and ke > 0.0:
-                f = math.sqrt(max(0.0, 1.0 - dv / ke))
-                for j in range(nbod):
-                    vx[j] *= f
-                    vy[j] *= f
-                    om[j] *= f
+            cap_projection_energy(mass, ii, vx, vy, om, y, v0, g)
         t += h
         step += 1
         # joints, impacts
-        n_open = 0
-        for k in range(nj):
-            op = False
-            for c in range(2):
-                o = gmid[k, c] > gtol
-                if not o and was_open[k, c] and lam[3 * k + c] > 0.0:
-                    impacts += 1
-                was_open[k, c] = o
-                op = op or o
-            if op:
-                n_open += 1
+        di, n_open = count_joints(gmid, gtol, was_open, lam)
+        impacts += di
         if n_open > open_max:
             open_max = n_open
         rho = 0.0

@@ -16,7 +16,13 @@ from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
 from rockarch.mdof.graph_solver import NSGS_TOL
 from rockarch.mdof.graph_stepper import contact_step, make_work, project
-from rockarch.mdof.kinematics import advance, cumint, cumint_knots
+from rockarch.mdof.kinematics import (
+    advance,
+    cap_projection_energy,
+    count_joints,
+    cumint,
+    cumint_knots,
+)
 
 
 @nb.njit(cache=True)
@@ -139,29 +145,11 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             for j in range(nbod):
                 v0 += mass[j] * y[j]
             project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws)
-            dv = -g * v0
-            for j in range(nbod):
-                dv += g * mass[j] * y[j]
-            ke = _kinetic(mass, ws.ii, vx, vy, om)
-            if dv > 0.0 and ke > 0.0:
-                f = math.sqrt(max(0.0, 1.0 - dv / ke))
-                for j in range(nbod):
-                    vx[j] *= f
-                    vy[j] *= f
-                    om[j] *= f
+            cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
         t += h
         step += 1
-        n_open = 0
-        for k in range(nj):
-            op = False
-            for c in range(2):
-                o = gmid[k, c] > gtol
-                if not o and was_open[k, c] and ws.lam[3 * k + c] > 0.0:
-                    impacts += 1
-                was_open[k, c] = o
-                op = op or o
-            if op:
-                n_open += 1
+        di, n_open = count_joints(gmid, gtol, was_open, ws.lam)
+        impacts += di
         open_max = max(open_max, n_open)
         rho = 0.0
         for j in range(nbod):

@@ -65,3 +65,40 @@ def cumint_knots(tk, ak):
     for i in range(1, m):
         ck[i] = ck[i - 1] + 0.5 * (ak[i] + ak[i - 1]) * (tk[i] - tk[i - 1])
     return ck
+
+
+@nb.njit(cache=True)
+def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g):
+    """After a position projection: a gain of potential energy (O(h²) drift, not physics,
+    ``v0`` = Σ m·y before it) is taken from the kinetic energy, so the projection never
+    adds energy (docs/mdof.md, step 6). ``ii`` holds inverse moments of inertia."""
+    dv = -g * v0
+    ke = 0.0
+    for j in range(mass.shape[0]):
+        dv += g * mass[j] * y[j]
+        ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
+    if dv > 0.0 and ke > 0.0:
+        f = math.sqrt(max(0.0, 1.0 - dv / ke))
+        for j in range(mass.shape[0]):
+            vx[j] *= f
+            vy[j] *= f
+            om[j] *= f
+
+
+@nb.njit(cache=True)
+def count_joints(gmid, gtol, was_open, lam):
+    """Impacts (a corner closing with a compressive impulse) and open joints of one step;
+    updates ``was_open``. Returns (impacts, open joints)."""
+    impacts = 0
+    n_open = 0
+    for k in range(gmid.shape[0]):
+        op = False
+        for c in range(2):
+            o = gmid[k, c] > gtol
+            if not o and was_open[k, c] and lam[3 * k + c] > 0.0:
+                impacts += 1
+            was_open[k, c] = o
+            op = op or o
+        if op:
+            n_open += 1
+    return impacts, n_open
