@@ -31,6 +31,18 @@ Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
 POOL_MIN_RECORDS = 16
 
 
+def ida_sweep_options(opts: dict, n_records: int) -> dict:
+    """The sweep options of an IDA (fragility, design --system --records): as given, else
+    local processes on every core from :data:`POOL_MIN_RECORDS` records (records in
+    parallel: bisection rounds are one simulation each)."""
+    sweep = sweep_options(opts)
+    if sweep["workers"] is None and sweep["scheduler"] is None \
+            and sweep["dask_workers"] is None and n_records >= POOL_MIN_RECORDS \
+            and (os.cpu_count() or 1) > 1:
+        sweep["workers"] = os.cpu_count()
+    return sweep
+
+
 def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
     """--im-range LO,HI in display units (g for pga and sa, m/s for pgv) → SI."""
     if text is None:
@@ -88,12 +100,7 @@ def fragility(
     check_outputs((plot, "--plot", "png"))
     suite = read_suite(list(records) + list(more or []), units=units)
     motions = suite.motions
-    sweep = sweep_options(opts)
-    if sweep["workers"] is None and sweep["scheduler"] is None \
-            and sweep["dask_workers"] is None and len(motions) >= POOL_MIN_RECORDS \
-            and (os.cpu_count() or 1) > 1:
-        sweep["workers"] = os.cpu_count()  # records in parallel (bisection rounds: 1 sim each)
-    with open_sweep(**sweep, n_sims=ratios.size * len(motions),
+    with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
         res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
                      period=period, ratio=ratios, tol=tol,

@@ -31,6 +31,7 @@ from rockarch.cli._common import (
 )
 from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
+from rockarch.cli.fragility import _print_table, ida_sweep_options
 from rockarch.design import design_check, design_system
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
@@ -286,7 +287,7 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
             raise ValueError(f"--bootstrap must be >= 0, got {opt['bootstrap']}")
         ratios = ratio_grid(1.0, opt["ratio_max"], opt["ratio_steps"])
         suite = read_suite(records)
-        with open_sweep(**sweep_options(opt), n_sims=ratios.size * len(suite),
+        with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
                         echo=echo_err) as (executor, chunk_store):
             res = design_system(sysobj, records=suite, ratio=ratios, tol=opt["tol"],
                                 n_bootstrap=opt["bootstrap"], executor=executor,
@@ -303,8 +304,6 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
 
 
 def _print_system_design(res) -> None:
-    from rockarch.cli.fragility import _print_table
-
     slide = ""
     if res.ap_min_no_sliding is not None:
         slide = (f" (friction-aware; {res.ap_min_no_sliding:.4g} without sliding: the "
