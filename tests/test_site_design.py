@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -144,7 +145,7 @@ def test_site_oas_cli_any_system(folder, tmp_path, block_site):
     assert bad.exit_code == 2 and "not of a slender block" in bad.stderr
 
 
-def test_design_cli_records_any_system(folder):
+def test_design_cli_records_any_system(folder, tmp_path):
     args = ["design", "--system", "mdof", "--column", "0.3,1.0;0.25,0.8", "--friction",
             "0.5", "--records", str(folder), "--ratio-steps", "9", "--tol", "0.05",
             "--bootstrap", "20", "--no-store"]
@@ -157,8 +158,16 @@ def test_design_cli_records_any_system(folder):
     # two records, no censoring: the MLE is the closed form (mean and std of ln x)
     assert out["fragility"]["median"] == pytest.approx(math.exp(np.log(pts).mean()),
                                                        rel=1e-12)
-    text = runner.invoke(app, args)
+    rep = tmp_path / "r.html"
+    text = runner.invoke(app, [*args, "--report", str(rep)])
     assert text.exit_code == 0 and "safe PGA" in text.stdout and "ELC180-12s" in text.stdout
+    html = rep.read_text()
+    # self-contained (spectra and fragility inlined), with the command that reruns it
+    assert not re.search(r'(src|href)\s*=\s*"(https?:|//)', html)
+    assert html.count('src="data:image/png;base64,') == 2
+    assert "rockarch design --column" in html and "--system mdof" in html
+    assert "--friction 0.5" in html
+    assert f"{out['pga_safe']:.3f} m/s²" in html and "SHA-256" in html
 
 
 def test_design_cli_fourhinge_with_a_site_file(block_site, tmp_path):

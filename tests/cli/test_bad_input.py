@@ -275,7 +275,7 @@ def _cases():
     col = ["design", "--system", "mdof", "--column", "0.4,1.0", "--site", "{files}/site.nc"]
     add("design-system-sliding-with-site", col + ["--friction", "0.2"])
     add("design-system-thickness-rule", col + ["--thickness-rule", "lower-bound"])
-    add("design-system-report", col + ["--report", "{tmp}/d.html"])
+    add("design-system-report-missing-dir", col + ["--report", "{tmp}/no/d.html"])
     add("design-system-curve=simplified", col + ["--curve", "simplified"])
     add("design-system-mdof-p", col + ["--p", "2"])
     add("design-system-no-site-no-records", col[:-2])

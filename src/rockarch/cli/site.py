@@ -36,7 +36,7 @@ from rockarch.design import design_check, design_system
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
 from rockarch.output.fragility_plots import fragility_html
-from rockarch.output.report import write_report
+from rockarch.output.report import write_report, write_system_report
 from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
 
@@ -252,7 +252,7 @@ _SYSTEM_ONLY = ("alpha", "p", "blocks", *(name for name, _, _ in STRUCTURE), "ma
                 "delta", "ap_min", "ratio_max")
 #: design options of the arch design only (with their defaults: given when they differ).
 _ARCH_ONLY = {"thickness_rule": "equivalent", "replacement_axis": "catenary",
-              "replacement_mass": "own", "save_site": None, "report": None}
+              "replacement_mass": "own", "save_site": None}
 
 
 def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
@@ -265,6 +265,7 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          "--system)")
     if (opt["site_file"] is None) == (not records):
         raise ValueError("give either --site FILE or --records DIR")
+    check_outputs((opt["report"], "--report", "html"))
     if kind in ("frame", "sdof") and opt["p"] is None:
         raise ValueError(f"--system {kind} needs --p (its frequency parameter [1/s])")
     if kind in ("fourhinge", "mdof") and opt["p"] is not None:
@@ -277,6 +278,7 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          t_free=opt["t_free"], **mdof_structure(opt))
     kw = {"curve": opt["curve"], "percentile": opt["percentile"], "g": opt["g"],
           "pga": opt["pga"], "probability": opt["probability"]}
+    suite = None
     if opt["site_file"] is not None:
         res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
                             g=kw["g"])
@@ -297,10 +299,35 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     if res.ratio_is_lower_bound:
         echo_err("warning: the site curve does not collapse the structure within the ratio "
                  "range; the safe PGA is a lower bound")
+    if opt["report"] is not None:
+        write_system_report(res, opt["report"], command=_command_line(opt), suite=suite)
     if json_out:
         print_json(res.to_dict())
         return
     _print_system_design(res)
+    if opt["report"] is not None:
+        typer.echo(f"wrote {opt['report']}")
+
+
+def _command_line(opt: dict) -> str:
+    """The command with the options given (those that differ from their default), as the
+    report's way to rerun it."""
+    import shlex
+
+    import click
+
+    words = ["rockarch", "design"]
+    command = typer.main.get_command(app).get_command(None, "design")
+    for prm in command.params:
+        v = opt.get(prm.name)
+        if v is None or v == prm.default or prm.name in ("report", "json_out") or v == []:
+            continue
+        if isinstance(prm, click.Option) and prm.is_flag:
+            words.append(prm.opts[0] if v else prm.secondary_opts[0])
+            continue
+        for item in v if isinstance(v, (list, tuple)) else [v]:
+            words += [prm.opts[0], str(getattr(item, "value", item))]
+    return " ".join(shlex.quote(w) for w in words)
 
 
 def _print_system_design(res) -> None:
