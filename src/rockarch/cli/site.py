@@ -161,10 +161,13 @@ def design(
     json_out: bool = JSON_OPT,
     **opts,
 ) -> None:
-    """Largest safe PGA of an arch at a site (paper Sect. 9): replacement catenary, site OAS.
+    """Largest safe PGA of a structure at a site. An arch by the paper's method (Sect. 9):
+    replacement catenary, site OAS. Any --system (docs/theory.md Sect. 11.4): its own
+    ap,min and its own IDA over --records (envelope or percentile, fragility), or the
+    equivalent SDOF on a block's --site file.
 
-    With --records the site OAS is computed on the sweep executor and store (the sweep
-    options as in oas). With --system any structure: docs/theory.md Sect. 11.4."""
+    With --records the computation runs on the sweep executor and store (the sweep options
+    as in oas)."""
     args = {k: v for k, v in locals().items() if k != "opts"} | opts
     if system is not None:
         _design_system(args, records or [], json_out)
