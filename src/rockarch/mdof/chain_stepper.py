@@ -58,6 +58,17 @@ def _arm(b, moving, c, s, r0, r1, x, y):
 
 
 @nb.njit(cache=True)
+def _rows(jl, jr, r, dx, dy, ax, ay, bx, by):
+    """Jacobian row r of a contact direction d = (dx, dy) with arms a (L body) and b (R)."""
+    jl[r, 0] = -dx
+    jl[r, 1] = -dy
+    jl[r, 2] = -(ax * dy - ay * dx)
+    jr[r, 0] = dx
+    jr[r, 1] = dy
+    jr[r, 2] = bx * dy - by * dx
+
+
+@nb.njit(cache=True)
 def _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset) and Jacobian rows (3·nj, 3)
     w.r.t. the L and R bodies at (x, y, ph)."""
@@ -91,13 +102,7 @@ def _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr):
             ax, ay, plx, ply = _arm(lb, lb >= 0, cl, sl, rl[k, c, 0], rl[k, c, 1], x, y)
             bx, by, prx, pry = _arm(rb, rb < nbod, cr, sr, rr[k, c, 0], rr[k, c, 1], x, y)
             gap[k, c] = nx * (prx - plx) + ny * (pry - ply)
-            r = 3 * k + c
-            jl[r, 0] = -nx
-            jl[r, 1] = -ny
-            jl[r, 2] = -(ax * ny - ay * nx)
-            jr[r, 0] = nx
-            jr[r, 1] = ny
-            jr[r, 2] = bx * ny - by * nx
+            _rows(jl, jr, 3 * k + c, nx, ny, ax, ay, bx, by)
             if c == 0 or gap[k, 1] < gap[k, 0]:
                 best = c
                 bax = ax
@@ -111,12 +116,7 @@ def _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr):
         sy = nx
         gap[k, 2] = sx * bdx + sy * bdy  # tangential offset of the corners in contact
         r = 3 * k + 2
-        jl[r, 0] = -sx
-        jl[r, 1] = -sy
-        jl[r, 2] = -(bax * sy - bay * sx)
-        jr[r, 0] = sx
-        jr[r, 1] = sy
-        jr[r, 2] = bbx * sy - bby * sx
+        _rows(jl, jr, r, sx, sy, bax, bay, bbx, bby)
         if lb < 0:
             jl[3 * k, :] = 0.0
             jl[3 * k + 1, :] = 0.0
