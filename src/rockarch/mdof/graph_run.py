@@ -61,7 +61,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         out_state, out_e):
     """Simulate one assembly (``m``: a :class:`rockarch.mdof.kernel_data.GraphModel`) scaled
     by ``scale`` (lengths) on amp·a(t) [m/s²]. Returns (status, t_collapse,
-    max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max)."""
+    max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max,
+    rest_steps: the steps solved by the rest path of :mod:`rockarch.mdof.rest_solver`)."""
     mass = m.mass
     g = m.g
     nbod = mass.shape[0]
@@ -106,6 +107,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     max_slip = 0.0
     n_rec = 0
     fails = 0
+    rest = 0
     t = 0.0
     step = 0
     i_prev = 0.0
@@ -119,8 +121,11 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         for j in range(nbod):
             vx[j] -= h * agbar
             vy[j] -= h * g
-        if contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws) < 0:
+        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws)
+        if its < 0:
             fails += 1
+        elif its == 0 and not m.banded:
+            rest += 1
         n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
         advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
@@ -202,7 +207,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         if t >= t_motion and n_open == 0 and n_sl == 0:
             if _kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
                 break
-    return status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max
+    return status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max, rest
 
 
 @nb.njit(cache=True, parallel=True)

@@ -8,7 +8,8 @@ line, so a joint may slide along a's face. Per joint: two corner rows and one ta
 row at the corner in contact (the smaller gap), with the joint's Coulomb cone (μ finite) or
 the no-slip constraint (μ = ∞, the chain model). Contact solve: exact, a box-constrained QP
 on the banded W iterated on the friction bounds (:func:`banded_friction`; docs/theory.md
-Eq. (9.4)), or non-smooth Gauss–Seidel for very wide graphs
+Eq. (9.4)), or, for very wide graphs, the rest path (:mod:`rockarch.mdof.rest_solver`,
+Eq. (9.7)) and where it does not apply non-smooth Gauss–Seidel
 (:mod:`rockarch.mdof.graph_solver`). Positions stabilised by one Gauss–Seidel sweep per step
 of the chain stepper's projection (closed contacts that carried an impulse close, sticking
 joints keep their slip; velocities untouched, never adding energy). Collapse, impacts and
@@ -25,6 +26,7 @@ import numpy as np
 
 from rockarch.mdof.chain_solver import box_qp
 from rockarch.mdof.graph_solver import apply_impulse, joint_velocity, nsgs, solve3
+from rockarch.mdof.rest_solver import note_velocity, rest_solve
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
@@ -203,8 +205,9 @@ def banded_friction(m, ws, eps, tol_u, tol_l):
 def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
     """Geometry at (x, y, ph), contact impulses for the free velocities (vx, vy, om), which
     are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st. Exact banded solve
-    (:func:`banded_friction`), or Gauss–Seidel sweeps if the model says so. Returns the solver's
-    iteration count (negative: failed)."""
+    (:func:`banded_friction`), or, if the model says so, the rest path
+    (:func:`rockarch.mdof.rest_solver.rest_solve`: returns 0) and else Gauss–Seidel sweeps.
+    Returns the solver's iteration count (negative: failed)."""
     nj = m.n0.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, m.n0, ws.gap, ws.ja, ws.jb)
     for k in range(nj):
@@ -220,6 +223,9 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
                 ws.q[3 * k + i] = d[i]
         its = banded_friction(m, ws, eps, tol_u, tol_l)
     else:
+        if rest_solve(m, ws, vx, vy, om, tol_u, tol_l):
+            note_velocity(m, ws, vx, vy, om, m.g * hh)
+            return 0
         joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
     for k in range(nj):
         for i in range(3):
@@ -227,8 +233,10 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
         apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, vx, vy, om)
     if m.banded:
         return its
-    return nsgs(nj, m.ba, m.bb, ws.ja, ws.jb, ws.wl, ws.bias, m.mu, ws.im, ws.ii, vx, vy, om,
-                ws.lam, ws.case, tol_u, tol_l)
+    sweeps = nsgs(nj, m.ba, m.bb, ws.ja, ws.jb, ws.wl, ws.bias, m.mu, ws.im, ws.ii, vx, vy, om,
+                  ws.lam, ws.case, tol_u, tol_l)
+    note_velocity(m, ws, vx, vy, om, m.g * hh)
+    return sweeps
 
 
 @nb.njit(cache=True)
@@ -309,6 +317,19 @@ class Work(NamedTuple):
     rhs: np.ndarray
     sol: np.ndarray
     st: np.ndarray
+    kf: np.ndarray  # rest path (rest_solver): factor of J_SᵀJ_S, its diagonal, S
+    kdiag: np.ndarray
+    rs_new: np.ndarray
+    rs_set: np.ndarray
+    wt: np.ndarray
+    je: np.ndarray
+    tb_new: np.ndarray
+    tb_set: np.ndarray
+    rv: np.ndarray
+    lt: np.ndarray
+    vt: np.ndarray
+    rstate: np.ndarray  # [factor valid 1 / singular -1 / none 0, last velocity / g·h]
+    lref: np.ndarray  # [thinnest joint]: rotations × lref compare with velocities
 
 
 @nb.njit(cache=True)
@@ -317,8 +338,15 @@ def make_work(m, scale, lam, case):
     nj = m.n0.shape[0]
     n = 3 * nj
     kd = m.kd if m.banded else 0
+    nb3 = 0 if m.banded else 3 * m.mass.shape[0]
+    ne = 0 if m.banded else n
     return Work(m.ra * scale, m.rb * scale, 1.0 / m.mass, 1.0 / (m.inertia * scale * scale),
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
                 np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
                 np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-                np.zeros(n), np.zeros(n, dtype=np.int8))
+                np.zeros(n), np.zeros(n, dtype=np.int8), np.zeros((nb3, m.kbody + 1)),
+                np.zeros(nb3), np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.bool_),
+                np.zeros(n), np.zeros((ne, 2, 3)), np.zeros(nj, dtype=np.int8),
+                np.zeros(nj, dtype=np.int8),
+                np.zeros(nb3), np.zeros(n), np.zeros((3, m.mass.shape[0])), np.zeros(2),
+                np.array([m.thick_min * scale]))

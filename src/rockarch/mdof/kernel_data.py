@@ -65,6 +65,8 @@ class GraphModel(NamedTuple):
     inc_joint: np.ndarray
     inc_side: np.ndarray  # 0: as body a, 1: as body b
     order: np.ndarray  # (nj,) model joint i is the assembly's joint order[i]
+    bpos: np.ndarray  # (nb,) place of every body in a narrow-band body order (rest path)
+    kbody: int  # half-bandwidth of J·Jᵀ's body-space twin JᵀJ in that order (3 rows a body)
     thick_min: float
     delta_ref: float
     g: float
@@ -106,6 +108,29 @@ def joint_order(assembly: Assembly) -> tuple[np.ndarray, int]:
     return min(((o, _half_band(o, p)) for o in cands), key=lambda c: c[1])
 
 
+def body_order(assembly: Assembly) -> tuple[np.ndarray, int]:
+    """The place of every body in a narrow-band body order and the half-bandwidth of JᵀJ in
+    it (3 rows per body): the narrowest of reverse Cuthill–McKee on the bodies-sharing-a-
+    joint graph and the bodies sorted by abscissa or by height."""
+    body_a, body_b = np.asarray(assembly.body_a), np.asarray(assembly.body_b)
+    nb_ = assembly.n_blocks
+    both = (body_a >= 0) & (body_b >= 0)
+    p = np.column_stack([body_a[both], body_b[both]])
+    if not p.size:
+        return np.arange(nb_, dtype=np.int64), 2
+    adj = csr_matrix((np.ones(len(p)), (p[:, 0], p[:, 1])), shape=(nb_, nb_))
+    cen = np.asarray(assembly.centroid, dtype=float)
+    best = None
+    for o in (reverse_cuthill_mckee(adj + adj.T, symmetric_mode=True),
+              np.lexsort((cen[:, 1], cen[:, 0])), np.lexsort((cen[:, 0], cen[:, 1]))):
+        pos = np.empty(nb_, dtype=np.int64)
+        pos[np.asarray(o)] = np.arange(nb_)
+        kb = int(3 * np.abs(pos[p[:, 0]] - pos[p[:, 1]]).max() + 2)
+        if best is None or kb < best[1]:
+            best = (pos, kb)
+    return best
+
+
 def graph_model(assembly: Assembly) -> GraphModel:
     """The general stepper's input: the contact graph (body_a, body_b) and mu per joint."""
     order, kd = joint_order(assembly)
@@ -127,5 +152,6 @@ def graph_model(assembly: Assembly) -> GraphModel:
                       np.ascontiguousarray(ptr, dtype=np.int64),
                       np.array([i[1] for i in inc], dtype=np.int64),
                       np.array([i[2] for i in inc], dtype=np.int64), order,
+                      *body_order(assembly),
                       float(assembly.thickness.min()), float(assembly.delta_ref),
                       float(assembly.g))

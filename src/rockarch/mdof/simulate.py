@@ -139,7 +139,7 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
         out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
                      out_q, out_s, out_e)
         out_s[:, model.order] = out_s.copy()  # back to the assembly's joint numbers
-    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide = out
+    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide = out[:10]
     c0 = model.c0
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
