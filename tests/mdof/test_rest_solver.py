@@ -51,15 +51,16 @@ def _one_step(a, ag, force_gs=False):
     m = graph_model(a)._replace(banded=False)
     nj, nbod = m.n0.shape[0], m.mass.shape[0]
     ws = gs.make_work(m, 1.0, np.zeros(3 * nj), np.zeros(nj, dtype=np.int64))
+    rw = rs.make_rest_work(m, 1.0)
     if force_gs:
-        ws.rstate[1] = math.inf  # the gate: as if the structure were moving
+        rw.rstate[1] = math.inf  # the gate: as if the structure were moving
     h = 0.005 / a.p_ref
     wmax = max(ws.im.max(), (ws.ii * m.thick_min ** 2).max())
     tol_u = NSGS_TOL * G * h
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1].copy(), np.zeros(nbod)
     vx, vy, om = np.full(nbod, -h * ag), np.full(nbod, -h * G), np.zeros(nbod)
     its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * m.thick_min, h, EPS_REG * wmax,
-                          tol_u, tol_u / wmax, ws)
+                          tol_u, tol_u / wmax, ws, rw)
     return its, np.column_stack([vx, vy, om * m.thick_min]), ws.lam.copy(), m, ws, h
 
 

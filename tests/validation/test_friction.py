@@ -170,6 +170,7 @@ def test_fully_open_joint_separates_only_with_friction(mu):
     # untouched); without (mu = inf, the no-sliding model) the no-slip row holds the hinge
     from rockarch.mdof import graph_stepper as gs
     from rockarch.mdof.kernel_data import graph_model
+    from rockarch.mdof.rest_solver import make_rest_work
 
     blk = mdof.single_block(0.5, 1.0)
     m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))
@@ -177,7 +178,8 @@ def test_fully_open_joint_separates_only_with_friction(mu):
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1] + 1e-3, np.zeros(1)
     vx, vy, om = np.array([1.0]), np.zeros(1), np.zeros(1)
     h = 1e-3  # the gap (1 mm) is not closed within the step: no speculative contact
-    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws)
+    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws,
+                    make_rest_work(m, 1.0))
     if math.isfinite(mu):
         assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
     else:  # the hinge stops the base corner's sideways motion (r_y = -H/2 = -0.5 m)

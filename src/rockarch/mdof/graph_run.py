@@ -23,6 +23,7 @@ from rockarch.mdof.kinematics import (
     cumint,
     cumint_knots,
 )
+from rockarch.mdof.rest_solver import make_rest_work
 
 
 @nb.njit(cache=True)
@@ -70,6 +71,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     n = 3 * nj
     ws = make_work(m, scale, np.zeros(n), np.zeros(nj, dtype=np.int64))
     tws = make_work(m, scale, np.zeros(n), np.zeros(nj, dtype=np.int64))
+    rw = make_rest_work(m, scale)
+    trw = make_rest_work(m, scale)
     cx0 = m.c0[:, 0] * scale
     cy0 = m.c0[:, 1] * scale
     gtol = gtol_rel * m.thick_min * scale
@@ -121,7 +124,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         for j in range(nbod):
             vx[j] -= h * agbar
             vy[j] -= h * g
-        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws)
+        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws, rw)
         if its < 0:
             fails += 1
         elif its == 0 and not m.banded:
@@ -190,7 +193,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 tws.case[k] = ws.case[k]
             for r in range(n):
                 tws.st[r] = ws.st[r]
-            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws)
+            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws,
+                         trw)
             dd = 0.0
             dn = 0.0
             vn = 0.0

@@ -202,9 +202,10 @@ def banded_friction(m, ws, eps, tol_u, tol_l):
 
 
 @nb.njit(cache=True)
-def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
+def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws, rw):
     """Geometry at (x, y, ph), contact impulses for the free velocities (vx, vy, om), which
-    are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st. Exact banded solve
+    are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st; rw: the rest path's
+    work (:func:`rockarch.mdof.rest_solver.make_rest_work`). Exact banded solve
     (:func:`banded_friction`), or, if the model says so, the rest path
     (:func:`rockarch.mdof.rest_solver.rest_solve`: returns 0) and else Gauss–Seidel sweeps.
     Returns the solver's iteration count (negative: failed)."""
@@ -223,8 +224,8 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
                 ws.q[3 * k + i] = d[i]
         its = banded_friction(m, ws, eps, tol_u, tol_l)
     else:
-        if rest_solve(m, ws, vx, vy, om, tol_u, tol_l):
-            note_velocity(m, ws, vx, vy, om, m.g * hh)
+        if rest_solve(m, ws, rw, vx, vy, om, tol_u, tol_l):
+            note_velocity(m, rw, vx, vy, om, m.g * hh)
             return 0
         joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
     for k in range(nj):
@@ -235,7 +236,7 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws):
         return its
     sweeps = nsgs(nj, m.ba, m.bb, ws.ja, ws.jb, ws.wl, ws.bias, m.mu, ws.im, ws.ii, vx, vy, om,
                   ws.lam, ws.case, tol_u, tol_l)
-    note_velocity(m, ws, vx, vy, om, m.g * hh)
+    note_velocity(m, rw, vx, vy, om, m.g * hh)
     return sweeps
 
 
@@ -317,19 +318,6 @@ class Work(NamedTuple):
     rhs: np.ndarray
     sol: np.ndarray
     st: np.ndarray
-    kf: np.ndarray  # rest path (rest_solver): factor of J_SᵀJ_S, its diagonal, S
-    kdiag: np.ndarray
-    rs_new: np.ndarray
-    rs_set: np.ndarray
-    wt: np.ndarray
-    je: np.ndarray
-    tb_new: np.ndarray
-    tb_set: np.ndarray
-    rv: np.ndarray
-    lt: np.ndarray
-    vt: np.ndarray
-    rstate: np.ndarray  # [factor valid 1 / singular -1 / none 0, last velocity / g·h]
-    lref: np.ndarray  # [thinnest joint]: rotations × lref compare with velocities
 
 
 @nb.njit(cache=True)
@@ -338,15 +326,8 @@ def make_work(m, scale, lam, case):
     nj = m.n0.shape[0]
     n = 3 * nj
     kd = m.kd if m.banded else 0
-    nb3 = 0 if m.banded else 3 * m.mass.shape[0]
-    ne = 0 if m.banded else n
     return Work(m.ra * scale, m.rb * scale, 1.0 / m.mass, 1.0 / (m.inertia * scale * scale),
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
                 np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
                 np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-                np.zeros(n), np.zeros(n, dtype=np.int8), np.zeros((nb3, m.kbody + 1)),
-                np.zeros(nb3), np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.bool_),
-                np.zeros(n), np.zeros((ne, 2, 3)), np.zeros(nj, dtype=np.int8),
-                np.zeros(nj, dtype=np.int8),
-                np.zeros(nb3), np.zeros(n), np.zeros((3, m.mass.shape[0])), np.zeros(2),
-                np.array([m.thick_min * scale]))
+                np.zeros(n), np.zeros(n, dtype=np.int8))

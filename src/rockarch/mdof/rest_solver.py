@@ -25,6 +25,7 @@ corner; otherwise the step goes to Gauss–Seidel unchanged.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba as nb
 import numpy as np
@@ -43,6 +44,37 @@ REST_REFINE = 4
 #: A Cholesky pivot below this fraction of its diagonal term: J_SᵀDJ_S is singular, S does
 #: not hold every body (a mechanism): no solution with v⁺ = 0 on this S.
 PIVOT_TOL = 1e-10
+
+
+class RestWork(NamedTuple):
+    """Work arrays of the rest path (one per run and workspace)."""
+
+    kf: np.ndarray  # the factor of J_SᵀDJ_S (upper band, body order)
+    kdiag: np.ndarray  # its diagonal before factorisation
+    rs_new: np.ndarray  # S to factorise, S factorised (rows)
+    rs_set: np.ndarray
+    tb_new: np.ndarray  # joints held at their cone's edge (±1), to factorise / factorised
+    tb_set: np.ndarray
+    wt: np.ndarray  # D
+    je: np.ndarray  # rows of S on bodies a and b
+    rv: np.ndarray  # loads to balance / the increment (body order)
+    lt: np.ndarray  # the trial impulses
+    vt: np.ndarray  # the trial velocities (3, nb)
+    rstate: np.ndarray  # [factor valid 1 / singular -1 / none 0, last velocity / g·h]
+    lref: np.ndarray  # [thinnest joint]: rotations × lref compare with velocities
+
+
+@nb.njit(cache=True)
+def make_rest_work(m, scale):
+    """Zeroed rest-path work of one run (empty for a banded model, which never uses it)."""
+    nb3 = 0 if m.banded else 3 * m.mass.shape[0]
+    n = 0 if m.banded else 3 * m.n0.shape[0]
+    nj = n // 3
+    return RestWork(np.zeros((nb3, m.kbody + 1)), np.zeros(nb3), np.zeros(n, dtype=np.bool_),
+                    np.zeros(n, dtype=np.bool_), np.zeros(nj, dtype=np.int8),
+                    np.zeros(nj, dtype=np.int8), np.zeros(n), np.zeros((n, 2, 3)),
+                    np.zeros(nb3), np.zeros(n), np.zeros((3, nb3 // 3)), np.zeros(2),
+                    np.array([m.thick_min * scale]))
 
 
 @nb.njit(cache=True)
@@ -86,9 +118,9 @@ def band_substitute(n, fac, x):
 
 
 @nb.njit(cache=True)
-def _support(m, ws, every):
-    """S (ws.rs_new): closed corner rows with a last impulse (``every``: all closed corner
-    rows), the tangential rows of their joints, every no-slip row; ws.tb_new: ±1 for a
+def _support(m, ws, rw, every):
+    """S (rw.rs_new): closed corner rows with a last impulse (``every``: all closed corner
+    rows), the tangential rows of their joints, every no-slip row; rw.tb_new: ±1 for a
     joint whose last Λ_t was at ±μ·ΣΛ_n (held there), else 0. True if either differs from
     the factorised one."""
     changed = False
@@ -96,22 +128,22 @@ def _support(m, ws, every):
         r = 3 * k
         s0 = (every or ws.lam[r] > 0.0) and ws.bias[r] == 0.0
         s1 = (every or ws.lam[r + 1] > 0.0) and ws.bias[r + 1] == 0.0
-        ws.rs_new[r] = s0
-        ws.rs_new[r + 1] = s1
-        ws.rs_new[r + 2] = s0 or s1 or math.isinf(m.mu[k])
-        ws.tb_new[k] = 0
+        rw.rs_new[r] = s0
+        rw.rs_new[r + 1] = s1
+        rw.rs_new[r + 2] = s0 or s1 or math.isinf(m.mu[k])
+        rw.tb_new[k] = 0
         if (s0 or s1) and not math.isinf(m.mu[k]) and not every:
             bound = m.mu[k] * (ws.lam[r] + ws.lam[r + 1])
             if abs(ws.lam[r + 2]) >= (1.0 - 1e-9) * bound:
-                ws.tb_new[k] = 1 if ws.lam[r + 2] > 0.0 else -1
-        changed = changed or ws.tb_new[k] != ws.tb_set[k]
+                rw.tb_new[k] = 1 if ws.lam[r + 2] > 0.0 else -1
+        changed = changed or rw.tb_new[k] != rw.tb_set[k]
         for i in range(3):
-            changed = changed or ws.rs_new[r + i] != ws.rs_set[r + i]
+            changed = changed or rw.rs_new[r + i] != rw.rs_set[r + i]
     return changed
 
 
 @nb.njit(cache=True)
-def _weights(m, ws, every):
+def _weights(m, ws, rw, every):
     """Row weights D of S from the last impulses: a corner's Λ_n (``every``: plus their mean,
     1 if none), a free tangential row's min(μ, 1)·(Λ_n0 + Λ_n1) (the mean corner weight for
     a no-slip row without them)."""
@@ -120,54 +152,54 @@ def _weights(m, ws, every):
     for k in range(m.n0.shape[0]):
         for c in range(2):
             r = 3 * k + c
-            if ws.rs_new[r] and ws.lam[r] > 0.0:
+            if rw.rs_new[r] and ws.lam[r] > 0.0:
                 tot += ws.lam[r]
                 cnt += 1
     mean = tot / cnt if cnt else 1.0
     for k in range(m.n0.shape[0]):
         for c in range(2):
             r = 3 * k + c
-            ws.wt[r] = max(ws.lam[r], 0.0) + (mean if every else 0.0) if ws.rs_new[r] else 0.0
+            rw.wt[r] = max(ws.lam[r], 0.0) + (mean if every else 0.0) if rw.rs_new[r] else 0.0
     mean = mean * (2.0 if every else 1.0)
     for k in range(m.n0.shape[0]):
         r = 3 * k + 2
-        sn = ws.wt[r - 2] + ws.wt[r - 1]
-        ws.wt[r] = min(m.mu[k], 1.0) * sn if sn > 0.0 else mean
-        if not ws.rs_new[r] or ws.tb_new[k] != 0:
-            ws.wt[r] = 0.0
+        sn = rw.wt[r - 2] + rw.wt[r - 1]
+        rw.wt[r] = min(m.mu[k], 1.0) * sn if sn > 0.0 else mean
+        if not rw.rs_new[r] or rw.tb_new[k] != 0:
+            rw.wt[r] = 0.0
 
 
 @nb.njit(cache=True)
-def _rows(m, ws):
-    """ws.je[r, side] = row r of S as it acts on body a (side 0) and b (side 1): a corner row
+def _rows(m, ws, rw):
+    """rw.je[r, side] = row r of S as it acts on body a (side 0) and b (side 1): a corner row
     of a joint held at its cone's edge carries its friction, J_c ± μ·J_t."""
     for k in range(m.n0.shape[0]):
-        sg = ws.tb_set[k] * m.mu[k] if ws.tb_set[k] != 0 else 0.0
+        sg = rw.tb_set[k] * m.mu[k] if rw.tb_set[k] != 0 else 0.0
         for i in range(3):
             r = 3 * k + i
             f = sg if i < 2 else 0.0
             for c in range(3):
-                ws.je[r, 0, c] = ws.ja[r, c] + f * ws.ja[3 * k + 2, c]
-                ws.je[r, 1, c] = ws.jb[r, c] + f * ws.jb[3 * k + 2, c]
+                rw.je[r, 0, c] = ws.ja[r, c] + f * ws.ja[3 * k + 2, c]
+                rw.je[r, 1, c] = ws.jb[r, c] + f * ws.jb[3 * k + 2, c]
 
 
 @nb.njit(cache=True)
-def _gram(m, ws, every):
+def _gram(m, ws, rw, every):
     """Upper band of J_Sᵀ·D·J_S in the body order (3 rows per body), factorised in place."""
     nbod = m.mass.shape[0]
-    kf = ws.kf
+    kf = rw.kf
     kf[:] = 0.0
-    _weights(m, ws, every)
+    _weights(m, ws, rw, every)
     for k in range(m.n0.shape[0]):
-        ws.tb_set[k] = ws.tb_new[k]
+        rw.tb_set[k] = rw.tb_new[k]
         for i in range(3):
-            ws.rs_set[3 * k + i] = ws.rs_new[3 * k + i]
-    _rows(m, ws)
+            rw.rs_set[3 * k + i] = rw.rs_new[3 * k + i]
+    _rows(m, ws, rw)
     for k in range(m.n0.shape[0]):
         ends = (m.ba[k], m.bb[k])
         for i in range(3):
             r = 3 * k + i
-            wr = ws.wt[r]
+            wr = rw.wt[r]
             if wr == 0.0:
                 continue
             for p in range(2):
@@ -179,119 +211,119 @@ def _gram(m, ws, every):
                         continue
                     bq = 3 * m.bpos[ends[q]]
                     for s in range(3):
-                        ep = wr * ws.je[r, p, s]
+                        ep = wr * rw.je[r, p, s]
                         for t in range(3):
                             if bq + t >= bp + s:
-                                kf[bp + s, bq + t - bp - s] += ep * ws.je[r, q, t]
+                                kf[bp + s, bq + t - bp - s] += ep * rw.je[r, q, t]
     for i in range(3 * nbod):
-        ws.kdiag[i] = kf[i, 0]
-    return band_cholesky(3 * nbod, kf, ws.kdiag)
+        rw.kdiag[i] = kf[i, 0]
+    return band_cholesky(3 * nbod, kf, rw.kdiag)
 
 
 @nb.njit(cache=True)
-def _residual(m, ws, vx, vy, om):
-    """ws.rv = −M·v_free − J_SᵀΛ (body order); returns its largest velocity, M⁻¹·rv,
-    relative to one unit of ws.rv's scale (translation, rotation × thick_min)."""
+def _residual(m, ws, rw, vx, vy, om):
+    """rw.rv = −M·v_free − J_SᵀΛ (body order); returns its largest velocity, M⁻¹·rv,
+    relative to one unit of rw.rv's scale (translation, rotation × thick_min)."""
     nbod = m.mass.shape[0]
     for j in range(nbod):
         p = 3 * m.bpos[j]
-        ws.rv[p] = -vx[j] / ws.im[j]
-        ws.rv[p + 1] = -vy[j] / ws.im[j]
-        ws.rv[p + 2] = -om[j] / ws.ii[j]
+        rw.rv[p] = -vx[j] / ws.im[j]
+        rw.rv[p + 1] = -vy[j] / ws.im[j]
+        rw.rv[p + 2] = -om[j] / ws.ii[j]
     for k in range(m.n0.shape[0]):
         for i in range(3):
             r = 3 * k + i
-            lam = ws.lt[r]
+            lam = rw.lt[r]
             if lam == 0.0:
                 continue
             if m.ba[k] >= 0:
                 p = 3 * m.bpos[m.ba[k]]
                 for c in range(3):
-                    ws.rv[p + c] -= ws.ja[r, c] * lam
+                    rw.rv[p + c] -= ws.ja[r, c] * lam
             if m.bb[k] >= 0:
                 p = 3 * m.bpos[m.bb[k]]
                 for c in range(3):
-                    ws.rv[p + c] -= ws.jb[r, c] * lam
+                    rw.rv[p + c] -= ws.jb[r, c] * lam
     dv = 0.0
     for j in range(nbod):
         p = 3 * m.bpos[j]
-        dv = max(dv, abs(ws.rv[p]) * ws.im[j], abs(ws.rv[p + 1]) * ws.im[j],
-                 abs(ws.rv[p + 2]) * ws.ii[j] * ws.lref[0])
+        dv = max(dv, abs(rw.rv[p]) * ws.im[j], abs(rw.rv[p + 1]) * ws.im[j],
+                 abs(rw.rv[p + 2]) * ws.ii[j] * rw.lref[0])
     return dv
 
 
 @nb.njit(cache=True)
-def _increment(m, ws):
-    """ws.lt += D·J_S·(J_SᵀDJ_S)⁻¹·ws.rv (the factor in ws.kf, the rows in ws.je)."""
-    band_substitute(ws.rv.shape[0], ws.kf, ws.rv)
+def _increment(m, rw):
+    """rw.lt += D·J_S·(J_SᵀDJ_S)⁻¹·rw.rv (the factor in rw.kf, the rows in rw.je)."""
+    band_substitute(rw.rv.shape[0], rw.kf, rw.rv)
     for k in range(m.n0.shape[0]):
         ends = (m.ba[k], m.bb[k])
         for i in range(3):
             r = 3 * k + i
-            if ws.wt[r] == 0.0:
+            if rw.wt[r] == 0.0:
                 continue
             u = 0.0
             for p in range(2):
                 if ends[p] >= 0:
                     q = 3 * m.bpos[ends[p]]
-                    u += ws.je[r, p, 0] * ws.rv[q] + ws.je[r, p, 1] * ws.rv[q + 1] \
-                        + ws.je[r, p, 2] * ws.rv[q + 2]
-            ws.lt[r] += ws.wt[r] * u
-    _held(m, ws)
+                    u += rw.je[r, p, 0] * rw.rv[q] + rw.je[r, p, 1] * rw.rv[q + 1] \
+                        + rw.je[r, p, 2] * rw.rv[q + 2]
+            rw.lt[r] += rw.wt[r] * u
+    _held(m, rw)
 
 
 @nb.njit(cache=True)
-def _held(m, ws):
+def _held(m, rw):
     """Λ_t of the joints held at their cone's edge: ±μ·(Λ_n0 + Λ_n1)."""
     for k in range(m.n0.shape[0]):
-        if ws.tb_set[k] != 0:
-            ws.lt[3 * k + 2] = ws.tb_set[k] * m.mu[k] * (ws.lt[3 * k] + ws.lt[3 * k + 1])
+        if rw.tb_set[k] != 0:
+            rw.lt[3 * k + 2] = rw.tb_set[k] * m.mu[k] * (rw.lt[3 * k] + rw.lt[3 * k + 1])
 
 
 @nb.njit(cache=True)
-def _balance(m, ws, vx, vy, om, tol_v):
-    """Λ on S balancing the loads (ws.lt), refined to tol_v. False if it does not converge."""
-    for r in range(ws.lt.shape[0]):
-        ws.lt[r] = ws.lam[r] if ws.rs_set[r] else 0.0
-    _held(m, ws)
-    _rows(m, ws)
+def _balance(m, ws, rw, vx, vy, om, tol_v):
+    """Λ on S balancing the loads (rw.lt), refined to tol_v. False if it does not converge."""
+    for r in range(rw.lt.shape[0]):
+        rw.lt[r] = ws.lam[r] if rw.rs_set[r] else 0.0
+    _held(m, rw)
+    _rows(m, ws, rw)
     for _ in range(REST_REFINE):
-        if _residual(m, ws, vx, vy, om) <= tol_v:
+        if _residual(m, ws, rw, vx, vy, om) <= tol_v:
             return True
-        _increment(m, ws)
-    return _residual(m, ws, vx, vy, om) <= tol_v
+        _increment(m, rw)
+    return _residual(m, ws, rw, vx, vy, om) <= tol_v
 
 
 @nb.njit(cache=True)
-def _admissible(m, ws, tol_l):
+def _admissible(m, rw, tol_l):
     """Λ_n ≥ 0 and |Λ_t| ≤ μ·(Λ_n0 + Λ_n1) within tol_l (Eq. (9.2)). Where not, the next S
-    (ws.rs_new, ws.tb_new) leaves out the corner (and a joint's tangential row with its last
+    (rw.rs_new, rw.tb_new) leaves out the corner (and a joint's tangential row with its last
     corner) or holds the joint at its cone's edge. Returns the number of changes."""
     out = 0
     for k in range(m.n0.shape[0]):
         r = 3 * k
-        ws.tb_new[k] = ws.tb_set[k]
+        rw.tb_new[k] = rw.tb_set[k]
         for i in range(3):
-            ws.rs_new[r + i] = ws.rs_set[r + i]
+            rw.rs_new[r + i] = rw.rs_set[r + i]
         for c in range(2):
-            if ws.lt[r + c] < -tol_l:
-                ws.rs_new[r + c] = False
+            if rw.lt[r + c] < -tol_l:
+                rw.rs_new[r + c] = False
                 out += 1
         if math.isinf(m.mu[k]):
             continue
-        if not (ws.rs_new[r] or ws.rs_new[r + 1]):
-            out += ws.rs_new[r + 2]
-            ws.rs_new[r + 2] = False
-            ws.tb_new[k] = 0
-        elif ws.tb_set[k] == 0 and \
-                abs(ws.lt[r + 2]) > m.mu[k] * (ws.lt[r] + ws.lt[r + 1]) + tol_l:
-            ws.tb_new[k] = 1 if ws.lt[r + 2] > 0.0 else -1
+        if not (rw.rs_new[r] or rw.rs_new[r + 1]):
+            out += rw.rs_new[r + 2]
+            rw.rs_new[r + 2] = False
+            rw.tb_new[k] = 0
+        elif rw.tb_set[k] == 0 and \
+                abs(rw.lt[r + 2]) > m.mu[k] * (rw.lt[r] + rw.lt[r + 1]) + tol_l:
+            rw.tb_new[k] = 1 if rw.lt[r + 2] > 0.0 else -1
             out += 1
     return out
 
 
 @nb.njit(cache=True)
-def _complementary(m, ws, tol_u):
+def _complementary(m, ws, rw, tol_u):
     """At ws.v (the velocities Λ gives): |U| ≤ tol_u on S, U_n ≥ −tol_u on the other rows
     (Eq. (9.1)); finite-μ tangential rows outside S carry no impulse, any U_t will do."""
     for k in range(m.n0.shape[0]):
@@ -301,12 +333,12 @@ def _complementary(m, ws, tol_u):
             r = 3 * k + i
             u = ws.bias[r]
             if a >= 0:
-                u += ws.ja[r, 0] * ws.vt[0, a] + ws.ja[r, 1] * ws.vt[1, a] \
-                    + ws.ja[r, 2] * ws.vt[2, a]
+                u += ws.ja[r, 0] * rw.vt[0, a] + ws.ja[r, 1] * rw.vt[1, a] \
+                    + ws.ja[r, 2] * rw.vt[2, a]
             if b >= 0:
-                u += ws.jb[r, 0] * ws.vt[0, b] + ws.jb[r, 1] * ws.vt[1, b] \
-                    + ws.jb[r, 2] * ws.vt[2, b]
-            if ws.rs_set[r]:
+                u += ws.jb[r, 0] * rw.vt[0, b] + ws.jb[r, 1] * rw.vt[1, b] \
+                    + ws.jb[r, 2] * rw.vt[2, b]
+            if rw.rs_set[r]:
                 if abs(u) > tol_u:
                     return False
             elif i < 2 and u < -tol_u:
@@ -315,42 +347,42 @@ def _complementary(m, ws, tol_u):
 
 
 @nb.njit(cache=True)
-def _stick(m, ws, vx, vy, om, tol_u, tol_l, every):
-    """Admissible Λ (ws.lt) that stops every body, starting from the last impulses on S
+def _stick(m, ws, rw, vx, vy, om, tol_u, tol_l, every):
+    """Admissible Λ (rw.lt) that stops every body, starting from the last impulses on S
     (``every``: on every closed corner), leaving inadmissible rows out up to ``REST_DROPS``
     times."""
-    changed = _support(m, ws, every) or every
+    changed = _support(m, ws, rw, every) or every
     for _ in range(REST_DROPS + 1):
-        if changed or ws.rstate[0] == 0.0:
-            ws.rstate[0] = 1.0 if _gram(m, ws, every) else -1.0
-        if ws.rstate[0] < 0.0:
+        if changed or rw.rstate[0] == 0.0:
+            rw.rstate[0] = 1.0 if _gram(m, ws, rw, every) else -1.0
+        if rw.rstate[0] < 0.0:
             return False
-        if not _balance(m, ws, vx, vy, om, 0.1 * tol_u):
+        if not _balance(m, ws, rw, vx, vy, om, 0.1 * tol_u):
             if changed:
                 return False
-            ws.rstate[0] = 1.0 if _gram(m, ws, False) else -1.0  # the factor was too old
-            if ws.rstate[0] < 0.0 or not _balance(m, ws, vx, vy, om, 0.1 * tol_u):
+            rw.rstate[0] = 1.0 if _gram(m, ws, rw, False) else -1.0  # the factor was too old
+            if rw.rstate[0] < 0.0 or not _balance(m, ws, rw, vx, vy, om, 0.1 * tol_u):
                 return False
-        if _admissible(m, ws, tol_l) == 0:
+        if _admissible(m, rw, tol_l) == 0:
             return True
         changed = True
     return False
 
 
 @nb.njit(cache=True)
-def rest_solve(m, ws, vx, vy, om, tol_u, tol_l):
+def rest_solve(m, ws, rw, vx, vy, om, tol_u, tol_l):
     """The rest path (module docstring) for the free velocities (vx, vy, om), turned into
     v⁺ in place and ws.lam into Λ if it solves the step (docs/theory.md Eq. (9.7)). Needs
     the step's geometry and bias in ws. Returns True if it did."""
     nbod = m.mass.shape[0]
-    if ws.rstate[1] > REST_V:
+    if rw.rstate[1] > REST_V:
         return False
     for every in (False, True):
-        if _stick(m, ws, vx, vy, om, tol_u, tol_l, every):
+        if _stick(m, ws, rw, vx, vy, om, tol_u, tol_l, every):
             break
         if every:
             return False
-    tx, ty, to = ws.vt[0], ws.vt[1], ws.vt[2]
+    tx, ty, to = rw.vt[0], rw.vt[1], rw.vt[2]
     for j in range(nbod):
         tx[j] = vx[j]
         ty[j] = vy[j]
@@ -358,23 +390,23 @@ def rest_solve(m, ws, vx, vy, om, tol_u, tol_l):
     d = np.empty(3)
     for k in range(m.n0.shape[0]):
         for i in range(3):
-            d[i] = ws.lt[3 * k + i]
+            d[i] = rw.lt[3 * k + i]
         apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, tx, ty, to)
-    if not _complementary(m, ws, tol_u):
+    if not _complementary(m, ws, rw, tol_u):
         return False
     for j in range(nbod):
         vx[j] = tx[j]
         vy[j] = ty[j]
         om[j] = to[j]
-    for r in range(ws.lt.shape[0]):
-        ws.lam[r] = ws.lt[r]
+    for r in range(rw.lt.shape[0]):
+        ws.lam[r] = rw.lt[r]
     return True
 
 
 @nb.njit(cache=True)
-def note_velocity(m, ws, vx, vy, om, gh):
+def note_velocity(m, rw, vx, vy, om, gh):
     """Store the step's largest body velocity relative to g·h (the gate ``REST_V``)."""
     v = 0.0
     for j in range(m.mass.shape[0]):
-        v = max(v, abs(vx[j]), abs(vy[j]), abs(om[j]) * ws.lref[0])
-    ws.rstate[1] = v / gh
+        v = max(v, abs(vx[j]), abs(vy[j]), abs(om[j]) * rw.lref[0])
+    rw.rstate[1] = v / gh
