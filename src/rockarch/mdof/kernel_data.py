@@ -59,14 +59,14 @@ class GraphModel(NamedTuple):
     rb: np.ndarray  # (nj, 2, 2) corners relative to body b (absolute for the ground)
     n0: np.ndarray  # (nj, 2) reference normals (turn with body a)
     mu: np.ndarray  # (nj,) friction coefficients (inf: no sliding)
-    banded: bool  # exact banded contact solve (else Gauss–Seidel)
+    banded: bool  # exact banded contact solve (else rest path, Gauss–Seidel)
     kd: int  # half-bandwidth of W in this joint order
     inc_ptr: np.ndarray  # (nb + 1,) body j takes part in joints inc_joint[inc_ptr[j]:inc_ptr[j+1]]
     inc_joint: np.ndarray
     inc_side: np.ndarray  # 0: as body a, 1: as body b
     order: np.ndarray  # (nj,) model joint i is the assembly's joint order[i]
     bpos: np.ndarray  # (nb,) place of every body in a narrow-band body order (rest path)
-    kbody: int  # half-bandwidth of J·Jᵀ's body-space twin JᵀJ in that order (3 rows a body)
+    kbody: int  # half-bandwidth of JᵀJ in that order (3 rows a body)
     thick_min: float
     delta_ref: float
     g: float
@@ -74,9 +74,10 @@ class GraphModel(NamedTuple):
 
 #: Largest half-bandwidth of W solved by the banded exact solve (cost n·kd² per
 #: factorisation, one per pivot, and a cold start pivots once per opening row); wider
-#: graphs use Gauss–Seidel. At kd = 38–47 (40-block walls) the banded solve is already 5–10×
-#: slower than Gauss–Seidel and fails steps on its pivot limit; the 14-block wall (kd = 32)
-#: and every chain and bridge of the tests stay banded.
+#: graphs use the rest path and Gauss–Seidel (rest_solver, graph_solver). At kd = 38–47
+#: (40-block walls) the banded solve is already 5–12× slower than those and fails steps on
+#: its pivot limit; the 14-block wall (kd = 32) and every chain and bridge of the tests stay
+#: banded.
 KD_MAX = 32
 
 
