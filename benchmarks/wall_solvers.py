@@ -57,10 +57,14 @@ def accuracy() -> None:
                   f"{out[7]} | {out[10]} | {out[6]} | {wall:.2f} |")
 
 
-def cost() -> None:
+def el_centro_5s() -> motion.GroundMotion:
     rec = el_centro()
     keep = rec.t <= 5.0
-    rec = motion.GroundMotion(rec.t[keep], rec.a[keep], "El Centro (first 5 s)")
+    return motion.GroundMotion(rec.t[keep], rec.a[keep], "El Centro (first 5 s)")
+
+
+def cost() -> None:
+    rec = el_centro_5s()
     a = bd.wall(10, 20, 0.4, 0.2, mu=0.6)
     model = graph_model(a)
     arch = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
@@ -83,9 +87,7 @@ def cost() -> None:
 
 
 def tall() -> None:
-    rec = el_centro()
-    keep = rec.t <= 5.0
-    rec = motion.GroundMotion(rec.t[keep], rec.a[keep], "El Centro (first 5 s)")
+    rec = el_centro_5s()
     a = bd.wall(10, 4, 0.4, 0.2, mu=0.6)
     m = rec.scaled(1.5 * a.ap_min / rec.pga)
     print(f"3. {a.name}: {a.n_blocks} blocks, El Centro at 1.5·ap,min + 1 s free")
