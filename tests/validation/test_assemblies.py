@@ -96,14 +96,16 @@ def test_wall_closed_forms():
     w = bd.wall(4, 3, 0.4, 0.2)
     # running bond: courses of 3, and 2 + 2 halves
     assert w.n_blocks == 2 * 3 + 2 * 4 and w.kind == "wall"
-    # no sliding: an end half block of the top course (b/h = 1) rocks away from the wall,
-    # its head joint sliding open with no force (non-associative friction, Eqs. 10.6-10.8):
-    # lambda = b/h = 1 exactly, and only that block moves
-    assert w.ap_min == pytest.approx(G * 1.0, rel=LP_TOL)
+    # no sliding: a stepped wedge at the wall's end (the end half block of course 2, the
+    # end block of course 3 and the two end blocks of course 4) rocks about its lowest
+    # outer corner with every joint around it open (a macro-block solution of the
+    # non-associative problem, Eq. 10.9): moment balance of its centroid about that corner,
+    # lever 0.2 + 1/30 m over height 0.3667 m = 7/11 exactly
+    assert w.ap_min == pytest.approx(G * 7 / 11, rel=LP_TOL)
     c = statics.collapse(w)
-    assert c.converged and np.flatnonzero(c.moving).tolist() in ([10], [13])
-    # associative friction (Eq. 10.4 alone) props the half blocks by shear on joints that
-    # carry no normal force: the whole wall's width / height, an unsafe 1.5 g
+    assert c.converged and np.flatnonzero(c.moving).tolist() in ([3, 7, 10, 11], [6, 9, 12, 13])
+    # associative friction (Eq. 10.4 alone) props the wall by shear on joints that carry no
+    # normal force: the whole wall's width / height, an unsafe 1.5 g
     assoc = statics.collapse(w, friction="associative")
     assert assoc.ap_min == pytest.approx(G * 1.2 / 0.8, rel=LP_TOL)
     # friction below that: a course slides on its bed joint at exactly mu·g

@@ -80,7 +80,7 @@ def test_block_rocks_away_from_a_support(mu):
 
 #: The stepped end wedge of a running-bond wall (courses 2-4, 0.4 x 0.2 m blocks) rocking
 #: about its lowest outer corner with every joint around it unloaded: lever / height of its
-#: centroid = (0.2 + 1/30) / (0.3667) = 7/11 (another non-associative solution, see below).
+#: centroid = (0.2 + 1/30) / (0.3667) = 7/11 (the macro-block solution, Eq. 10.9).
 WEDGE = 7.0 / 11.0
 
 
@@ -88,14 +88,15 @@ WEDGE = 7.0 / 11.0
 @pytest.mark.parametrize("columns", [3, 10])
 @pytest.mark.parametrize("sign", [1.0, -1.0])
 def test_wall_without_sliding(columns, sign):
-    # no sliding: an end half block of the top course (b/h = 1) rocks away from its head
-    # joint at 1.0 g (the associative LP alone propped it by shear at a joint without
-    # normal force: the whole wall's B/H, 1.5 g and 5 g). pymunk's collapse load is not
-    # sharp here: depending on direction, solver iterations and load it collapses by the
-    # half block at ~1.0 g or by a stepped end wedge from ~0.8 g (docs/validation.md). Its
-    # bracket, in both directions: stands at 0.99 x WEDGE, collapses at 1.01 x ap_min.
+    # no sliding: rockarch's ap_min is the stepped end wedge, 7/11 g (the associative LP
+    # alone propped the wall by shear on joints without normal force: the whole wall's
+    # B/H, 1.5 g and 5 g; the iteration of Eqs. 10.6-10.8 alone: an end half block of the
+    # top course, b/h = 1 g). pymunk's collapse load is not sharp here: depending on
+    # direction, solver iterations and load it collapses by that wedge from ~0.8 g or by
+    # the half block at ~1.0 g (docs/validation.md). Its bracket, in both directions:
+    # stands at 0.99 x ap_min (rockarch at the bottom, safe side), collapses at 1.01 g.
     a = bd.wall(4, columns, 0.4, 0.2)
-    assert a.ap_min / a.g == pytest.approx(1.0, rel=1e-7)  # HiGHS tolerance
+    assert a.ap_min / a.g == pytest.approx(WEDGE, rel=1e-7)  # HiGHS tolerance
     res = []
     for f in (0.99 * WEDGE, 1.01):
         drop, _ = po.run(a, lambda t, f=f: sign * f * a.g * min(t / 0.5, 1.0), 2.5)

@@ -13,8 +13,8 @@ is made as small as possible (no self-stress props a sliding joint), Eq. (10.8).
 
 The converged state is statically admissible for Coulomb friction and its mechanism slides
 without dilatancy; it is *a* solution of the non-associative problem, not a bound (that
-problem can have several). Without convergence the smallest load multiplier of the
-iterates is returned with a warning.
+problem can have several; :mod:`rockarch.mdof.macroblock` looks for lower ones). Without
+convergence the smallest load multiplier of the iterates is returned with a warning.
 """
 
 from __future__ import annotations
@@ -99,14 +99,14 @@ def select(a_eq, b_eq, cap, lam: float, target: np.ndarray, sliding: np.ndarray,
     return res.x[:m].reshape(nj, 2) if res.status == 0 else None
 
 
-def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of, cap_lambda: float,
-            label: str = "") -> Outcome:
+def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
+            cap_lambda: float) -> Outcome:
     """Gilbert–Casapulla–Ahmed iteration from the associative state (Eqs. 10.6–10.8).
 
     ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Convergence:
     |Δλ| ≤ 1e-9·max(1, λ) and max|N − Ñ| ≤ 1e-7·Σ m·g. Without it (or when frozen
-    capacities cannot carry gravity) the iterate of least λ is returned and a
-    RuntimeWarning says so.
+    capacities cannot carry gravity) the iterate of least λ is returned, not converged
+    (:func:`warn_unconverged` says so).
     """
     nj = len(mu)
     nt = start.x[:2 * nj].reshape(nj, 2).copy()
@@ -128,10 +128,14 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of, cap_lambd
                 and err <= TOL_FORCE):
             return Outcome(cur, True, k + 1, tuple(hist))
         lam_prev, nt = cur.lambda_, nt + RELAX * (n_new - nt)
-    if best is None:
-        best = start
-    warnings.warn(f"non-associative limit analysis{label} did not converge after "
-                  f"{len(hist)} LPs (lambda between {min(hist, default=best.lambda_):.6g} "
-                  f"and {max(hist, default=best.lambda_):.6g}); ap_min is the smallest, "
-                  f"{best.lambda_:.6g} g (docs/theory.md §10)", RuntimeWarning, stacklevel=3)
-    return Outcome(best, False, len(hist), tuple(hist))
+    return Outcome(start if best is None else best, False, len(hist), tuple(hist))
+
+
+def warn_unconverged(out: Outcome, direction: int) -> None:
+    """The RuntimeWarning of an iteration that did not converge (docs/theory.md §10)."""
+    lo, hi = min(out.history, default=out.state.lambda_), max(out.history,
+                                                              default=out.state.lambda_)
+    warnings.warn(f"non-associative limit analysis (direction {direction:+d}) did not "
+                  f"converge after {out.iterations} LPs (lambda between {lo:.6g} and "
+                  f"{hi:.6g}); ap_min is the smallest, {out.state.lambda_:.6g} g "
+                  "(docs/theory.md §10)", RuntimeWarning, stacklevel=4)

@@ -10,8 +10,9 @@ largest λ is the static collapse multiplier, ap,min = λ·g. scipy's HiGHS solv
 
 The cone as a yield surface is associative friction: it lets a joint that slides while it
 opens be propped by shear it could not carry. By default the LP is therefore followed by the
-non-associative iteration of :mod:`rockarch.mdof.nonassoc` (Eqs. (10.6)–(10.8)); the
-associative value stays available (``friction="associative"``).
+non-associative iteration of :mod:`rockarch.mdof.nonassoc` (Eqs. (10.6)–(10.8)) and the
+macro-block search of :mod:`rockarch.mdof.macroblock` (Eq. (10.9)), the smaller of both;
+the associative value stays available (``friction="associative"``).
 
 The dual solution is the collapse mechanism: a virtual velocity (u, v, ω) per block, from
 which the contacts that open or slide follow (:class:`Collapse`). Its equivalent block
@@ -29,6 +30,7 @@ from scipy.optimize import linprog
 from scipy.sparse import coo_matrix
 
 from rockarch.constants import G
+from rockarch.mdof import macroblock as mb
 from rockarch.mdof import nonassoc as na
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
@@ -194,7 +196,7 @@ def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, floa
 def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=None, *,
                    g: float = G, direction: int | None = None, names=None,
                    friction: str = "nonassociative") -> Collapse:
-    """The collapse of an assembly under a horizontal ground acceleration (Eqs. 10.2–10.8).
+    """The collapse of an assembly under a horizontal ground acceleration (Eqs. 10.2–10.9).
 
     Parameters
     ----------
@@ -214,8 +216,9 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     names : list of str, optional
         Block names for the error message of a structure that cannot stand.
     friction : "nonassociative" or "associative"
-        Coulomb friction without dilatancy (the iteration of Eqs. 10.6–10.8, default) or the
-        friction cone as yield surface (the single LP of Eq. 10.4).
+        Coulomb friction without dilatancy (the iteration of Eqs. 10.6–10.8 and the
+        macro-blocks of Eq. 10.9, default) or the friction cone as yield surface (the single
+        LP of Eq. 10.4).
 
     Raises
     ------
@@ -254,10 +257,16 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     converged, iterations = True, 0
     if friction == "nonassociative":
         out = na.iterate(a_eq, b_eq, mu, state, float(mass.sum()),
-                         lambda duals: _mechanism(duals, *geom)[2], LAMBDA_CAP,
-                         f" (direction {direction:+d})")
+                         lambda duals: _mechanism(duals, *geom)[2], LAMBDA_CAP)
         if not (out.converged and out.iterations == 1):  # else: LP state is a fixed point
             state, converged, iterations = out.state, out.converged, out.iterations
+        size = float(np.ptp(geom[3].reshape(-1, 2), axis=0).max())
+        wedge = mb.lowest(geom[2:7], mass, direction, lambda zero: mb.solve_zeroed(
+            cost, ub[0], ub[1], a_eq, b_eq, bounds, zero), state.lambda_, size)
+        if wedge is not None:  # a macro-block solution below the iteration's (Eq. 10.9)
+            state, converged = wedge, True
+        elif not converged:
+            na.warn_unconverged(out, direction)
     return _collapse(state, geom, g, converged, iterations)
 
 
@@ -278,7 +287,7 @@ def _collapse(state, geom, g: float, converged: bool, iterations: int) -> Collap
 
 def collapse(assembly, *, mu=None, direction: int | None = None,
              friction: str = "nonassociative") -> Collapse:
-    """:func:`limit_analysis` (Eqs. 10.4–10.8) of an
+    """:func:`limit_analysis` (Eqs. 10.4–10.9) of an
     :class:`~rockarch.mdof.assembly.Assembly` (its own friction coefficients unless ``mu``
     is given)."""
     a = assembly
