@@ -80,3 +80,4 @@ def test_macro_block_wedge_of_the_long_wall():
     boundary = s[w.body_a] ^ s[w.body_b]
     loaded = np.abs(c.normal_force[boundary]) > 1e-9 * float(w.mass.sum())
     assert c.moving.sum() == 4 and loaded.sum() == 1  # one corner: the pivot
+

@@ -258,6 +258,10 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     if friction == "nonassociative":
         out = na.iterate(a_eq, b_eq, mu, state, float(mass.sum()),
                          lambda duals: _mechanism(duals, *geom)[2], LAMBDA_CAP)
+        if out.iterations == 0:  # not even the first capacities (10.6) carry gravity
+            raise ValueError("the structure cannot stand under gravity: it hangs on shear "
+                             "at joints without normal force (non-associative friction, "
+                             "docs/theory.md §10)")
         if not (out.converged and out.iterations == 1):  # else: LP state is a fixed point
             state, converged, iterations = out.state, out.converged, out.iterations
         size = float(np.ptp(geom[3].reshape(-1, 2), axis=0).max())
