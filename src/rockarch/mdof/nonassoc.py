@@ -105,12 +105,13 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
 
     ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Convergence:
     |Δλ| ≤ 1e-9·max(1, λ) and max|N − Ñ| ≤ 1e-7·Σ m·g. Without it (or when frozen
-    capacities cannot carry gravity) the iterate of least λ is returned, not converged
+    capacities cannot carry gravity) the least λ of the iterates and of ``start`` (every
+    solution lies below the associative one) is returned, not converged
     (:func:`warn_unconverged` says so).
     """
     nj = len(mu)
     nt = start.x[:2 * nj].reshape(nj, 2).copy()
-    lam_prev, best, hist = start.lambda_, None, []
+    lam_prev, best, hist = start.lambda_, start, []
     for k in range(MAX_ITER):
         cap = shear_caps(mu, nt, weight)
         res = tresca_lp(a_eq, b_eq, cap, cap_lambda)
@@ -118,7 +119,7 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
             break
         cur = Iterate(float(res.x[-1]), res.x, np.asarray(res.eqlin.marginals))
         hist.append(cur.lambda_)
-        if best is None or cur.lambda_ < best.lambda_:
+        if cur.lambda_ < best.lambda_:  # iterates above (10.4) are no solutions
             best = cur
         n_new = select(a_eq, b_eq, cap, cur.lambda_, nt, sliding_of(cur.duals), cap_lambda)
         if n_new is None:
@@ -128,7 +129,7 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
                 and err <= TOL_FORCE):
             return Outcome(cur, True, k + 1, tuple(hist))
         lam_prev, nt = cur.lambda_, nt + RELAX * (n_new - nt)
-    return Outcome(start if best is None else best, False, len(hist), tuple(hist))
+    return Outcome(best, False, len(hist), tuple(hist))
 
 
 def warn_unconverged(out: Outcome, direction: int) -> None:
