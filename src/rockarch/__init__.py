@@ -11,6 +11,7 @@ The data flow is ``ground motion -> structure -> simulation -> spectrum -> desig
     r = ra.simulate(sys_, m, p=2.0, ratio=2.0)  # -> ra.Response
     r.overturned, r.t_overturn, r.max_rotation_ratio, r.impacts
     ds = ra.oas(sys_, m, p=[1.0, 2.0], ratio=np.linspace(1, 5, 41))  # xarray.Dataset
+    d = ra.design_system(sys_, p=2.0, records=ra.read_suite("DIR"))  # safe PGA, fragility
 
 Units are SI (m, s, m/s², rad); sign conventions in docs/theory.md.
 """
@@ -23,6 +24,7 @@ _jit_cache.use_digest_cache()  # before any numba kernel is defined
 
 from rockarch.arch.geometry import make_arch  # noqa: E402
 from rockarch.constants import G  # noqa: E402
+from rockarch.design import design_system  # noqa: E402
 from rockarch.motion import SIGNALS, GroundMotion  # noqa: E402
 from rockarch.motion import pulse as _pulse  # noqa: E402
 from rockarch.records import el_centro, read_record  # noqa: E402
@@ -59,5 +61,5 @@ def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
 
 
 __all__ = ["G", "KINDS", "SIGNALS", "Batch", "GroundMotion", "Response", "Suite", "__version__",
-           "batch", "el_centro", "make_arch", "oas", "pulse", "read_record", "read_suite",
-           "simulate", "synthetic_suite", "system"]
+           "batch", "design_system", "el_centro", "make_arch", "oas", "pulse", "read_record",
+           "read_suite", "simulate", "synthetic_suite", "system"]

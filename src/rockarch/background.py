@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from rockarch import motion, site, spectra, systems
-from rockarch.output.figures import save_figure, subplots
+from rockarch.output.boundary_plots import Curve, Panel, plot_boundaries, plot_regions
 from rockarch.records import el_centro
 
 #: Slendernesses of Fig. 3a (the slender one is the site OAS's block).
@@ -71,45 +71,22 @@ def _below(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.mean(a[both] < b[both] * (1 - _SAFE))) if both.any() else math.nan
 
 
-def _figure(ncols: int, nrows: int = 1, width: float = 6.0, height: float = 4.4):
-    return subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False)
-
-
-def _boundary_axes(ax, title: str, xlabel: str) -> None:
-    ax.set_title(title, fontsize=9)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
-    ax.set_ylim(1, 8)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-
-
-def _save(fig, path) -> None:
-    fig.tight_layout()
-    save_figure(fig, path)
-
-
 def fig2(path, *, n_p: int = 60, n_ratio: int = 71, alpha: float = site.ALPHA) -> list[dict]:
     """Fig. 2: the overturned region of a slender block, sine pulse and record."""
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, n_ratio)
     blk = systems.BlockSystem(alpha=alpha)
-    fig, axes = _figure(2)
-    rows = []
-    for ax, (name, m) in zip(axes[0], _motions().items(), strict=True):
+    rows, maps = [], []
+    for name, m in _motions().items():
         ds = spectra.compute_oas(blk, m, p, ratio, tol=0.0, progress=False)
         over = ds.overturned.values
-        ax.pcolormesh(p, ratio, over.T, cmap="Greys", vmin=0, vmax=1.6, shading="nearest")
-        ax.plot(p, ds.boundary.values, "r-", lw=1.2, label="lowest overturning ratio")
-        ax.set_title(f"block alpha = {alpha:g}, {name} (grey: overturns)", fontsize=9)
-        ax.set_xlabel("p [1/s]")
-        ax.set_ylabel(r"$a_p/a_{p,\min}$")
-        ax.legend(fontsize=8, loc="upper right")
+        maps.append((f"block alpha = {alpha:g}, {name} (grey: overturns)", p, ratio, over,
+                     ds.boundary.values))
         # islands: overturning at a ratio, not at a larger one, for the same p
         islands = int(np.sum(np.any(over[:, :-1] & ~over[:, 1:], axis=1)))
         rows.append({"signal": name, "alpha": alpha, "overturned_share": float(over.mean()),
                      "p_with_safe_islands": islands, "n_p": n_p})
-    _save(fig, path)
+    plot_regions(maps, path)
     return rows
 
 
@@ -122,20 +99,18 @@ def fig3a(path, *, n_p: int = 40, n_ratio: int = 57, tol: float = 1e-3,
     motions = _motions(signals)
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, n_ratio)
-    fig, axes = _figure(len(motions))
-    rows = []
-    for ax, (name, m) in zip(axes[0], motions.items(), strict=True):
+    rows, panels = [], []
+    for name, m in motions.items():
         curves = {a: _boundary(systems.BlockSystem(alpha=a), m, p, ratio, tol)
                   for a in FIG3_ALPHAS}
         slender = curves[FIG3_ALPHAS[0]]
-        for a, b in curves.items():
-            ax.plot(p, np.where(np.isfinite(b), b, np.nan), lw=1.8 if a == FIG3_ALPHAS[0]
-                    else 1.1, label=f"alpha = {a:g}")
-            if a != FIG3_ALPHAS[0]:
-                rows.append({"signal": name, "alpha": a, "slender_safe": _share(slender, b),
-                             "p_not": _where_above(p, slender, b)})
-        _boundary_axes(ax, f"{name}: slender vs less slender blocks", "p [1/s]")
-    _save(fig, path)
+        panels.append(Panel(f"{name}: slender vs less slender blocks", [
+            Curve(f"alpha = {a:g}", p, b, style={"lw": 1.8 if a == FIG3_ALPHAS[0] else 1.1})
+            for a, b in curves.items()]))
+        rows += [{"signal": name, "alpha": a, "slender_safe": _share(slender, b),
+                  "p_not": _where_above(p, slender, b)}
+                 for a, b in curves.items() if a != FIG3_ALPHAS[0]]
+    plot_boundaries([panels], path)
     return rows
 
 
@@ -149,18 +124,17 @@ def fig3b(path, *, n_p: int = 20, n_ratio: int = 57, tol: float = 1e-3,
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, n_ratio)
     width = FIG3B_HEIGHT * math.tan(FIG3B_ALPHA)
-    fig, axes = _figure(len(motions))
-    rows = []
-    for ax, (name, m) in zip(axes[0], motions.items(), strict=True):
+    rows, panels = [], []
+    for name, m in motions.items():
         ref = _boundary(systems.BlockSystem(alpha=FIG3B_ALPHA), m, p, ratio, tol)
-        ax.plot(p, np.where(np.isfinite(ref), ref, np.nan), "k:", lw=1.2,
-                label="monolith, block engine")
+        curves = [Curve("monolith, block engine", p, ref, "k:", {"lw": 1.2})]
         mono = None
         for n in blocks:
             col = systems.system("mdof", column=[(width, FIG3B_HEIGHT / n)] * n)
             b = _boundary(col, m, p, ratio, tol)
-            ax.plot(p, np.where(np.isfinite(b), b, np.nan), lw=1.8 if n == 1 else 1.1,
-                    label="monolith, MDOF engine" if n == 1 else f"column of {n} blocks")
+            curves.append(Curve("monolith, MDOF engine" if n == 1 else
+                                f"column of {n} blocks", p, b, style={"lw": 1.8 if n == 1
+                                                                       else 1.1}))
             if n == 1:
                 mono = b
                 continue
@@ -171,7 +145,7 @@ def fig3b(path, *, n_p: int = 20, n_ratio: int = 57, tol: float = 1e-3,
                          "p_weaker": _where_above(p, mono, b),
                          "mean_rel": float(np.mean(b[both] / mono[both] - 1)) if both.any()
                          else math.nan})
-        _boundary_axes(ax, f"{name}: columns vs monolith, alpha = {FIG3B_ALPHA:g}, "
-                       f"H = {FIG3B_HEIGHT:g} m", "p [1/s] (monolith)")
-    _save(fig, path)
+        panels.append(Panel(f"{name}: columns vs monolith, alpha = {FIG3B_ALPHA:g}, "
+                            f"H = {FIG3B_HEIGHT:g} m", curves))
+    plot_boundaries([panels], path, xlabel="p [1/s] (monolith)")
     return rows

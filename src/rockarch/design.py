@@ -1,22 +1,28 @@
-"""Design check of an arch with a site OAS (paper Sect. 9, Fig. 20; docs/theory.md §7).
+"""Design checks: the largest safe PGA of a structure at a site.
 
-The arch is replaced by a catenary arch (:mod:`rockarch.arch.replacement`), whose critical
-optimal four-hinge mechanism gives p and ap,min; the site's OAS of a slender block read at p
-gives the ratio ap/ap,min it survives, and the largest safe peak ground acceleration is
-ap = ratio·ap,min (paper Eq. 16, docs/theory.md Eq. 7.2).
+- An arch by the paper's method (Sect. 9, Fig. 20; docs/theory.md §7), :func:`design_check`:
+  the arch is replaced by a catenary arch (:mod:`rockarch.arch.replacement`), whose
+  critical optimal four-hinge mechanism gives p and ap,min; the site's OAS of a slender
+  block read at p gives the ratio ap/ap,min it survives, and the largest safe peak ground
+  acceleration is ap = ratio·ap,min (paper Eq. 16, docs/theory.md Eq. 7.2).
+- Any system (block, mechanism, MDOF assembly with friction), :func:`design_system`: its
+  own ap,min (friction-aware limit analysis) and either its own IDA over the records
+  (Eq. (11.34)) or a slender block's site OAS read at its p (Eq. (11.35)).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
 import xarray as xr
 
-from rockarch import site
+from rockarch import fragility as fr
+from rockarch import site as site_mod
 from rockarch._validate import positive
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
-from rockarch.constants import G
+from rockarch.constants import OAS_TOL, G
 
 
 @dataclass(frozen=True)
@@ -65,5 +71,140 @@ def design_check(arch: Arch, site_ds: xr.Dataset, *, rule: str = "equivalent",
     g = positive("g", g)
     repl = repl if repl is not None else replacement(arch, g=g, axis=axis, mass=mass)
     chosen = repl.by_rule(rule)
-    ratio, lower = site.curve_at(site_ds, chosen.p, curve)
+    ratio, lower = site_mod.curve_at(site_ds, chosen.p, curve)
     return DesignResult(arch, repl, rule, curve, ratio, lower, ratio * chosen.ap_min, g)
+
+
+# --------------------------------------------------------------------------- any system
+
+#: Site curves of the design of any system: the lowest collapse over the records, or a
+#: percentile of them.
+SYSTEM_CURVES = ("envelope", "characteristic")
+
+
+@dataclass(frozen=True)
+class SystemDesign:
+    """Outcome of :func:`design_system`: the largest safe PGA of one structure at a site
+    (docs/theory.md Eqs. (11.34)–(11.35)).
+
+    ``method`` is ``"records"`` (the structure's own IDA over the records; ``fragility``
+    holds its points and lognormal fit) or ``"equivalent-sdof"`` (a slender block's site
+    OAS read at the structure's p). ``sliding``: the limit analysis's collapse mechanism
+    slides (friction governs ap,min).
+    """
+
+    system: str
+    p: float
+    ap_min: float
+    method: str
+    curve: str
+    percentile: float
+    ratio: float
+    ratio_is_lower_bound: bool
+    pga_safe: float
+    g: float
+    sliding: bool = False
+    ap_min_no_sliding: float | None = None
+    fragility: fr.Fragility | None = None
+    summary: dict | None = None
+    note: str | None = None
+
+    def to_dict(self) -> dict:
+        """The CLI's JSON contract (``rockarch design --system ... --json``)."""
+        out = {"system": self.system, "p": self.p, "ap_min": self.ap_min,
+               "method": self.method, "curve": self.curve, "ratio": self.ratio,
+               "ratio_is_lower_bound": self.ratio_is_lower_bound,
+               "pga_safe": self.pga_safe, "pga_safe_g": self.pga_safe / self.g,
+               "sliding": self.sliding}
+        if self.curve == "characteristic":
+            out["percentile"] = self.percentile
+        if self.ap_min_no_sliding is not None:
+            out["ap_min_no_sliding"] = self.ap_min_no_sliding
+        if self.fragility is not None:
+            out["points"] = self.fragility.to_dict()["points"]
+            out["fragility"] = self.summary
+        return out
+
+
+def _structure(system, p: float | None) -> tuple[float, bool, float | None]:
+    """(p, sliding, ap_min without sliding) of a system at its own size or at ``p``."""
+    p = system.p_ref if p is None else p
+    if p is None:
+        raise ValueError(f"{system.name}: give its frequency parameter p (a block: p or "
+                         "width and height)")
+    a = getattr(system, "assembly", None)
+    if a is None or a.frictionless:
+        return float(p), False, None
+    rock = float(a.info.get("ap_min_no_sliding", a.ap_min))
+    return float(p), bool(system.ap_min < rock * (1 - 1e-9)), rock
+
+
+def _safe_ratio(value: float, top: float) -> tuple[float, bool]:
+    """A site curve's ratio, or the top of the range (a lower bound) where it is +inf."""
+    return (float(value), False) if np.isfinite(value) else (float(top), True)
+
+
+def design_system(system, *, records=None, names=None, site: xr.Dataset | None = None,
+                  p: float | None = None, curve: str = "envelope", percentile: float = 50.0,
+                  ratio=None, tol: float = OAS_TOL, n_bootstrap: int = fr.N_BOOTSTRAP,
+                  level: float = 0.95, pga: float | None = None,
+                  probability: float | None = 0.1, g: float = G, executor=None,
+                  store=None, progress: bool = False) -> SystemDesign:
+    """Largest safe PGA of any structure at a site (docs/theory.md Eqs. (11.34)–(11.35)).
+
+    Parameters
+    ----------
+    system : a system of :func:`rockarch.systems.system` (block, fourhinge, frame, sdof,
+        mdof with friction, piers, walls, colonnades, assembly files).
+    records, names : the site's records (a :class:`rockarch.suite.Suite` or motions): the
+        structure's own IDA at ``p`` over them (:func:`rockarch.fragility.ida`); the safe
+        ratio is the envelope (lowest) or ``percentile`` of the records' collapse ratios,
+        Eq. (11.34), and the collapse points are fitted by a lognormal (§11.3).
+    site : instead of records, a slender block's site OAS (:func:`rockarch.site.site_oas`)
+        read at the structure's p, Eq. (11.35) (refused if its collapse mechanism slides).
+    p : the structure's frequency parameter [1/s] (default its own, ``system.p_ref``).
+    curve : ``"envelope"`` or ``"characteristic"`` (the percentile; with ``site`` the
+        file's own percentile).
+    ratio, tol : the IDA scan grid of ap/ap,min (default 1 … 5, 81 values) and bisection
+        tolerance; n_bootstrap, level, pga, probability : as in
+        :func:`rockarch.fragility.design_summary`.
+    executor, store, progress : as in :func:`rockarch.spectra.compute_oas`.
+    """
+    if curve not in SYSTEM_CURVES:
+        raise ValueError(f"the site curve of a structure's design must be one of "
+                         f"{', '.join(SYSTEM_CURVES)}, got {curve!r}")
+    if (records is None) == (site is None):
+        raise ValueError("give either records or a site OAS")
+    g = positive("g", g)
+    p, sliding, rock = _structure(system, p)
+    ap_min = float(system.ap_min)
+    common = {"system": system.name, "p": p, "ap_min": ap_min, "curve": curve, "g": g,
+              "sliding": sliding, "ap_min_no_sliding": rock}
+    if site is not None:
+        site_mod.check_block_site(site)
+        if sliding:
+            raise ValueError(f"the collapse mechanism of {system.name} slides (ap,min = "
+                             f"{ap_min:.4g} m/s² with friction, {rock:.4g} m/s² without): a "
+                             "rocking block's site OAS does not apply; give --records")
+        r, lower = site_mod.curve_at(site, p, curve)
+        return SystemDesign(method="equivalent-sdof", ratio=r, ratio_is_lower_bound=lower,
+                            pga_safe=r * ap_min,
+                            percentile=float(site.attrs.get("percentile", 50.0)),
+                            **common)
+    if not 0.0 <= float(percentile) <= 100.0:
+        raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
+    names = getattr(records, "names", names)
+    motions = getattr(records, "motions", records)
+    res = fr.ida(system, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
+                 store=store, progress=progress)
+    env, char = site_mod.curves(res.ratio_collapse, percentile)
+    r, lower = _safe_ratio(env if curve == "envelope" else char, res.ratio[-1])
+    note, summary = None, None
+    try:
+        frag = fr.fit_ida(res, n_bootstrap=n_bootstrap, level=level)
+        summary = fr.design_summary(frag, pga=pga, probability=probability, g=g)
+    except fr.TooFewCollapses as exc:  # the points and the safe PGA are still the answer
+        frag, note = fr.Fragility(res, None, {}), str(exc)
+    return SystemDesign(method="records", ratio=r, ratio_is_lower_bound=lower,
+                        pga_safe=r * ap_min, percentile=float(percentile), fragility=frag,
+                        summary=summary, note=note, **common)

@@ -23,7 +23,7 @@ from rockarch.arch import (
 from rockarch.arch.replacement import replacement
 from rockarch.constants import G
 from rockarch.fourhinge_motion import fourhinge_mechanism
-from rockarch.output.figures import save_figure, subplots
+from rockarch.output.boundary_plots import Curve, Panel, plot_boundaries
 from rockarch.reference import SECT8, SECT9, TABLE1, TABLE2
 
 SIGNALS = ("sine", "square", "step")
@@ -99,37 +99,27 @@ def fig15(path, n_p: int = 40, rises=(0.2, 0.3, 0.4), thick=(0.0125, 0.025, 0.05
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, 71)
     block = systems.BlockSystem(alpha=0.01)
-    fig, axes = subplots(3, len(rises), figsize=(4.4 * len(rises), 11), sharex=True,
-                             sharey=True, squeeze=False)
-    rows = []
-    for i, sig in enumerate(SIGNALS):
+    rows, panels = [], []
+    for sig in SIGNALS:
         bb = _boundary(block, sig, p, ratio)
         b_inf = np.where(np.isfinite(bb), bb, np.inf)
-        for j, rise in enumerate(rises):
-            ax = axes[i, j]
-            slender = None
+        panels.append([])
+        for rise in rises:
+            slender, curves = None, []
             for d, col in zip(thick, colors, strict=False):
                 mech = fourhinge_mechanism(catenary(1.0, rise, d))
                 b = _boundary(systems.MechanismSystem(mech), sig, p, ratio)
                 rhs = np.where(np.isfinite(b), b, np.inf)
                 slender = rhs if slender is None else slender
-                ax.plot(p, b, color=col, lw=1.5, label=f"arch d/l = {d}")
+                curves.append(Curve(f"arch d/l = {d}", p, b, style={"color": col, "lw": 1.5}))
                 rows.append({"signal": sig, "f/l": rise, "d/l": d, "e": mech.plus.e_close,
                              "slender_safe": float(np.mean(slender <= rhs * (1 + 1e-3))),
                              "block_safe": float(np.mean(b_inf <= rhs * (1 + 1e-3)))})
-            ax.plot(p, bb, "k--", lw=1.5, label="slender block (alpha = 0.01)")
-            ax.set_title(f"{sig}, T = 1 s, catenary f/l = {rise}", fontsize=9)
-            ax.set_ylim(1, 8)
-            ax.grid(alpha=0.3)
-            if i == 2:
-                ax.set_xlabel("p [1/s]")
-            if j == 0:
-                ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
-    axes[0, 0].legend(fontsize=8)
-    fig.suptitle("Hypothesis 1 (paper Fig. 15): OAS of critical optimal four-hinge mechanisms "
-                 "of catenary arches", fontsize=11)
-    fig.tight_layout()
-    save_figure(fig, path)
+            curves.append(Curve("slender block (alpha = 0.01)", p, bb, "k--"))
+            panels[-1].append(Panel(f"{sig}, T = 1 s, catenary f/l = {rise}", curves))
+    plot_boundaries(panels, path, panel_size=(4.4, 11 / 3), suptitle="Hypothesis 1 (paper "
+                    "Fig. 15): OAS of critical optimal four-hinge mechanisms of catenary "
+                    "arches")
     return rows
 
 
@@ -178,9 +168,9 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
     out = Path(out)
     p = np.linspace(0.5, 10.0, n_p)
     ratio = np.linspace(1.0, 8.0, n_ratio)
-    figs = {h: subplots(3, 3, figsize=(13, 11), sharex=True, sharey=True) for h in (2, 3)}
+    panels: dict[int, list] = {2: [[] for _ in SIGNALS], 3: [[] for _ in SIGNALS]}
     rows = []
-    for j, (rise, d) in enumerate(MDOF_GEOMETRIES):
+    for rise, d in MDOF_GEOMETRIES:
         arch = catenary(1.0, rise, d)
         fh = fourhinge_mechanism(arch)
         asm = mdof.arch_assembly(arch, blocks)
@@ -203,25 +193,18 @@ def fig16_17(out, n_p: int = 30, blocks: int = 20, n_ratio: int = 57,
                          "open_joints_max": nopen})
             for h, other, lab in ((2, bf, "critical optimal four-hinge"),
                                   (3, bb, "block, same p and ap,min")):
-                ax = figs[h][1][i, j]
-                ax.plot(p, bm, color="tab:red", lw=1.8, label=f"MDOF arch, N = {blocks}")
-                ax.plot(p, other, "k--", lw=1.5, label=lab)
-                ax.set_title(f"{sig}, T = 1 s, catenary f/l = {rise}, d/l = {d}", fontsize=9)
-                if i == 2:
-                    ax.set_xlabel("p [1/s] (optimal four-hinge mechanism)")
-                if j == 0:
-                    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
-                ax.set_ylim(1, 8)
-                ax.grid(alpha=0.3)
+                panels[h][i].append(Panel(
+                    f"{sig}, T = 1 s, catenary f/l = {rise}, d/l = {d}",
+                    [Curve(f"MDOF arch, N = {blocks}", p, bm,
+                           style={"color": "tab:red", "lw": 1.8}),
+                     Curve(lab, p, other, "k--")]))
     for h, title in ((2, "Hypothesis 2 (paper Fig. 16): MDOF catenary arch vs its critical "
                       "optimal four-hinge mechanism"),
                      (3, "Hypothesis 3 (paper Fig. 17): MDOF catenary arch vs the block with "
                       "the same p and ap,min")):
-        fig, axes = figs[h]
-        axes[0, 0].legend(fontsize=8)
-        fig.suptitle(title, fontsize=11)
-        fig.tight_layout()
-        save_figure(fig, out / f"hypothesis{h}.png")
+        plot_boundaries(panels[h], out / f"hypothesis{h}.png", suptitle=title,
+                        xlabel="p [1/s] (optimal four-hinge mechanism)",
+                        panel_size=(13 / 3, 11 / 3))
     return rows
 
 
@@ -249,27 +232,20 @@ def fig19(path, rep=None, n_p: int = 37, mdof_blocks: int | None = 20) -> list[d
     for r, style in ((rep.equivalent, "b--"), (rep.lower_bound, "b:")):
         curves.append((f"block of the {r.rule} replacement",
                         systems.BlockSystem(alpha=math.atan(r.ap_min / G)), style))
-    fig, axes = subplots(1, 3, figsize=(15, 4.4), sharey=True)
-    rows = []
-    for ax, sig in zip(axes, SIGNALS, strict=True):
-        bounds = []
-        for label, system, style in curves:
-            bounds.append(_boundary(system, sig, p, ratio))
-            ax.plot(p, bounds[-1], style, lw=1.5, label=label)
+    rows, panels = [], []
+    for sig in SIGNALS:
+        bounds = [_boundary(system, sig, p, ratio) for _, system, _ in curves]
         ref = bounds[1] if mdof_blocks is not None else bounds[0]
         for (label, _, _), b in zip(curves, bounds, strict=True):
             if b is not ref:
                 safe, rel = _compare(ref, b)
                 rows.append({"signal": sig, "curve": label, "safe": safe, "mean_rel": rel})
-        ax.set_title(f"{sig}, T = 1 s", fontsize=9)
-        ax.set_xlabel("p [1/s]")
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
-    axes[0].legend(fontsize=8)
-    fig.suptitle("Paper Fig. 19: OAS of the circular arch (f/l = 0.289, d/l = 0.0346) and of "
-                 "its replacement blocks", fontsize=10)
-    fig.tight_layout()
-    save_figure(fig, path)
+        panels.append(Panel(f"{sig}, T = 1 s", [
+            Curve(label, p, b, style_) for (label, _, style_), b in zip(curves, bounds,
+                                                                        strict=True)]))
+    plot_boundaries([panels], path, panel_size=(5.0, 4.4), ylim=None,
+                    suptitle="Paper Fig. 19: OAS of the circular arch (f/l = 0.289, d/l = "
+                    "0.0346) and of its replacement blocks")
     return rows
 
 

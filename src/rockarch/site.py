@@ -64,11 +64,24 @@ def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], l
     return motions, hashes
 
 
+def curves(boundary, percentile: float) -> tuple[np.ndarray, np.ndarray]:
+    """The site's envelope and percentile curves of the records' boundaries (record, ...)
+    (docs/theory.md Eq. (2.2), a record that does not overturn within range counting as
+    +inf): (min over records, ``percentile`` over records, lower value), +inf left in."""
+    inf = np.where(np.isfinite(boundary), boundary, np.inf)
+    return inf.min(axis=0), np.percentile(inf, percentile, axis=0, method="lower")
+
+
 def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
-             progress: bool = True, executor=None, store=None,
+             progress: bool = True, executor=None, store=None, system=None,
              **system_kw) -> xr.Dataset:
-    """Block OAS of every record and the site's envelope and percentile curves (Sect. 9).
+    """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
+
+    The structure is the slender block of slenderness ``alpha`` (the paper's site OAS), or
+    ``system``, any :func:`rockarch.systems.system`: a block gives the same file as by
+    ``alpha``; any other structure has the p axis of :func:`rockarch.spectra.compute_oas`
+    (docs/theory.md Eq. (11.33): the same shape scaled to each p).
 
     Returns a Dataset with ``overturned`` (record, p, ratio), ``boundary`` (record, p),
     ``envelope`` (p), ``characteristic`` (p) (the ``percentile`` of the boundaries; a lower
@@ -80,10 +93,15 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
         raise ValueError("a site OAS needs at least one record")
     if not 0.0 <= float(percentile) <= 100.0:
         raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
+    if system is not None and (alpha != ALPHA or system_kw):
+        raise ValueError("give either a system or the block's alpha and settings, not both")
     n_p, n_r = np.size(p), np.size(ratio)
     check_simulations(len(motions) * n_p * n_r,
                       f"{len(motions)} records × {n_p} p × {n_r} ratio values")
-    system = systems.BlockSystem(alpha=alpha, **system_kw)
+    if system is None:
+        system = systems.BlockSystem(alpha=alpha, **system_kw)
+    block = isinstance(system, systems.BlockSystem)  # the paper's site OAS, as it was
+    alpha = system.alpha if block else None
 
     executor, owned = sweep.as_executor(executor)
     store = sweep.as_store(store)
@@ -100,9 +118,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
         if owned:
             executor.close()
     b = np.stack([ds["boundary"].values for ds in maps])
-    inf = np.where(np.isfinite(b), b, np.inf)
-    env = inf.min(axis=0)
-    char = np.percentile(inf, percentile, axis=0, method="lower")
+    env, char = curves(b, percentile)
     names = [m.name for m in motions]
     hashes = list(hashes) if hashes is not None else [m.fingerprint() for m in motions]
     ds = xr.Dataset(
@@ -122,11 +138,32 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     ds["p"].attrs.update(units="1/s", long_name="frequency parameter p")
     ds["ratio"].attrs.update(units="1", long_name="ap / ap,min")
     ds["record_pga"].attrs.update(units="m/s2")
-    ds.attrs.update(kind=KIND, format_version=FORMAT_VERSION, rockarch_version=__version__,
-                    alpha=float(alpha), percentile=float(percentile), tolerance=float(tol),
+    ds.attrs.update(kind=KIND, format_version=FORMAT_VERSION, rockarch_version=__version__)
+    if not block:  # any structure: its name and parameters, as an OAS file keeps them
+        ds.attrs.update({f"system_{k}": (v if not isinstance(v, bool) else int(v))
+                         for k, v in system.attrs().items()})
+        ds.attrs.update(system=system.name, percentile=float(percentile),
+                        tolerance=float(tol), t_free=system.t_free,
+                        p_axis="the structure scaled to each p (p ~ 1/sqrt(size), same "
+                               f"shape); p of the structure as given: {system.p_ref:.6g} 1/s",
+                        title=f"site OAS of {len(motions)} record(s), {system.name}")
+        return ds
+    ds.attrs.update(alpha=float(alpha), percentile=float(percentile), tolerance=float(tol),
                     t_free=system.t_free, restitution=system.attrs()["restitution"],
                     title=f"site OAS of {len(motions)} record(s), slender block "
                           f"alpha = {alpha:g}")
+    return ds
+
+
+def check_block_site(ds: xr.Dataset, path=None) -> xr.Dataset:
+    """The site OAS unchanged if it is a slender block's (what the paper's design method
+    reads, docs/theory.md Eq. (7.2)); a ValueError naming its structure otherwise."""
+    if "system" in ds.attrs:
+        where = f"{path}: " if path is not None else ""
+        raise ValueError(f"{where}this is the site OAS of {ds.attrs['system']}, not of a "
+                         "slender block: the design check reads a block's site OAS "
+                         "(rockarch site-oas without --system); for this structure give "
+                         "--records")
     return ds
 
 

@@ -58,8 +58,38 @@ def scale_to_ratio(motion: GroundMotion, ratio: float, ap_min: float) -> GroundM
     return motion.scaled(ratio * ap_min / motion.pga)
 
 
+class _Sweepable:
+    """What a sweep asks of every system: :meth:`run` on top of its ``batch``."""
+
+    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
+        raise NotImplementedError
+
+    def run(self, motion: GroundMotion, p, ratio):
+        """(overturned, max_rotation_ratio) over the broadcast p × ratio (Eq. 2.1)."""
+        res = self.batch(motion, p, ratio)
+        return res.overturned, res.max_rotation_ratio
+
+
+class _Scaled(_Sweepable):
+    """A structure of fixed shape whose p varies by scaling its size, simulated by one
+    engine module (``simulate``/``simulate_batch`` over the model of :meth:`_engine`)."""
+
+    def _engine(self) -> tuple:
+        """(engine module, model, settings keywords, extra keywords of the batch)."""
+        raise NotImplementedError
+
+    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None
+                 ) -> Response:
+        engine, model, kw, _ = self._engine()
+        return engine.simulate(model, scale_to_ratio(motion, ratio, self.ap_min), p=p, **kw)
+
+    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
+        engine, model, kw, batch_kw = self._engine()
+        return engine.simulate_batch(model, motion, p, ratio, **batch_kw, **kw)
+
+
 @dataclass(frozen=True)
-class BlockSystem:
+class BlockSystem(_Sweepable):
     """Rigid blocks of slenderness ``alpha`` (p varies across an OAS; ``p`` is the
     default of :meth:`simulate`)."""
 
@@ -105,10 +135,6 @@ class BlockSystem:
                            ratio, t_free=self.t_free, h_factor=self.h_factor,
                            eps_rest=self.eps_rest)
 
-    def run(self, motion: GroundMotion, p, ratio):
-        res = self.batch(motion, p, ratio)
-        return res.overturned, res.max_rotation_ratio
-
     def attrs(self) -> dict:
         d = {k: v for k, v in asdict(self).items() if v is not None}
         d["restitution"] = RigidBlock(1.0, self.alpha, self.g, self.restitution).r
@@ -117,7 +143,7 @@ class BlockSystem:
 
 
 @dataclass(frozen=True)
-class MechanismSystem:
+class MechanismSystem(_Scaled):
     """An SDOF mechanism of fixed shape: p varies by scaling its size (p ∝ 1/sqrt(size));
     ratio scales the motion to a peak of ratio·ap_min."""
 
@@ -138,19 +164,9 @@ class MechanismSystem:
     def p_ref(self) -> float:
         return self.mechanism.p
 
-    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None
-                 ) -> Response:
-        return mc.simulate(self.mechanism, scale_to_ratio(motion, ratio, self.ap_min), p=p,
-                           t_free=self.t_free, h_factor=self.h_factor,
-                           eps_rest=self.eps_rest)
-
-    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
-        return mc.simulate_batch(self.mechanism, motion, p, ratio, t_free=self.t_free,
-                                 h_factor=self.h_factor, eps_rest=self.eps_rest)
-
-    def run(self, motion: GroundMotion, p, ratio):
-        res = self.batch(motion, p, ratio)
-        return res.overturned, res.max_rotation_ratio
+    def _engine(self) -> tuple:
+        return mc, self.mechanism, {"t_free": self.t_free, "h_factor": self.h_factor,
+                                    "eps_rest": self.eps_rest}, {}
 
     def attrs(self) -> dict:
         m = self.mechanism
@@ -164,7 +180,7 @@ class MechanismSystem:
 
 
 @dataclass(frozen=True)
-class MDOFSystem:
+class MDOFSystem(_Scaled):
     """An MDOF assembly of fixed shape: p varies by scaling its size (p ∝ 1/sqrt(size)),
     ratio scales the motion's peak to ratio·ap_min.
 
@@ -197,21 +213,10 @@ class MDOFSystem:
         p = self.p_override
         return self.assembly.p_ref if p is None else p
 
-    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None
-                 ) -> Response:
-        return mdof.simulate(self.assembly, scale_to_ratio(motion, ratio, self.ap_min), p=p,
-                             t_free=self.t_free, h_factor=self.h_factor,
-                             gap_tol=self.gap_tol)
-
-    def batch(self, motion: GroundMotion, p, ratio) -> Batch:
-        return mdof.simulate_batch(self.assembly, motion, p, ratio,
-                                   ap_min=self.ap_min_override, p_ref=self.p_override,
-                                   t_free=self.t_free, h_factor=self.h_factor,
-                                   gap_tol=self.gap_tol)
-
-    def run(self, motion: GroundMotion, p, ratio):
-        res = self.batch(motion, p, ratio)
-        return res.overturned, res.max_rotation_ratio
+    def _engine(self) -> tuple:
+        return mdof, self.assembly, {"t_free": self.t_free, "h_factor": self.h_factor,
+                                     "gap_tol": self.gap_tol}, \
+            {"ap_min": self.ap_min_override, "p_ref": self.p_override}
 
     def attrs(self) -> dict:
         a = self.assembly

@@ -271,6 +271,22 @@ def _cases():
     for opt in ("span", "rise", "thickness"):
         add(f"design-{opt}=0", _sub(DESIGN, **{opt: "0"}))
     add("design-report-missing-dir", _sub(DESIGN, report="{tmp}/no/d.html"))
+    # design of any --system: option combinations that do not go together
+    col = ["design", "--system", "mdof", "--column", "0.4,1.0", "--site", "{files}/site.nc"]
+    add("design-system-sliding-with-site", col + ["--friction", "0.2"])
+    add("design-system-thickness-rule", col + ["--thickness-rule", "lower-bound"])
+    add("design-system-report-missing-dir", col + ["--report", "{tmp}/no/d.html"])
+    add("design-system-curve=simplified", col + ["--curve", "simplified"])
+    add("design-system-mdof-p", col + ["--p", "2"])
+    add("design-system-no-site-no-records", col[:-2])
+    add("design-system-friction-on-a-block", ["design", "--system", "block", "--alpha", "0.1",
+                                              "--p", "2", "--friction", "0.3", "--site",
+                                              "{files}/site.nc"])
+    add("design-system-frame-without-p", ["design", "--system", "frame", "--alpha", "0.1",
+                                          "--mass-ratio", "0.5", "--site", "{files}/site.nc"])
+    add("design-arch-with-friction", DESIGN + ["--friction", "0.5"])
+    add("design-no-structure", ["design", "--site", "{files}/site.nc"])
+    add("site-system-frame-without-mass-ratio", SITE + ["--system", "frame", "--alpha", "0.1"])
 
     # --- fragility, records, cache
     frag = ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2", "--records",

@@ -205,8 +205,6 @@ ARCH_SPAN_OPT = typer.Option(..., help="Span l of the axis [m].")
 ARCH_RISE_OPT = typer.Option(..., help="Rise f of the axis [m].")
 ARCH_THICK_OPT = typer.Option(..., help="Uniform thickness d normal to the axis [m].")
 MDOF_BLOCKS_OPT = typer.Option(None, help="Number of voussoirs N (at least 5).")
-COLUMN_OPT = typer.Option(None, help="A column instead of an arch: blocks bottom to top, "
-                          "'B,H;B,H' or 'B,H,x_centre;...' [m].")
 MDOF_H_OPT = typer.Option(MDOF_H_FACTOR, help="Time step × p (safe range 1e-4 … 0.05).")
 MDOF_TOL_OPT = typer.Option(GAP_TOL, help="Contact tolerance / joint thickness "
                             "(1e-10 … 1e-3).")
@@ -233,28 +231,6 @@ def column_blocks(column: str) -> list[np.ndarray]:
 
 
 # --- MDOF structures (rockarch.systems.mdof_assembly; docs/theory.md §10) -------------------
-
-FRICTION_OPT = typer.Option(None, help="Coulomb friction coefficient of every joint (> 0); "
-                            "absent: joints never slide. --ratio then multiplies the "
-                            "friction-aware ap,min.")
-SPANS_OPT = typer.Option(None, help="Put the arch on piers: number of equal spans (1: an "
-                         "arch on two piers; >= 2: a bridge between abutments).")
-PIER_H_OPT = typer.Option(None, help="Pier height, ground to intrados springing [m].")
-PIER_W_OPT = typer.Option(None, help="Pier width [m].")
-PIER_BLOCKS_OPT = typer.Option(None, help="Blocks per pier (default: about square).")
-ABUT_OPT = typer.Option(None, "--abutments/--end-piers", help="End springings on rigid "
-                        "abutments or on piers (default: abutments for --spans >= 2).")
-WALL_OPT = typer.Option(None, help="A wall in running bond: 'ROWS,COLUMNS' of --block "
-                        "blocks.")
-BLOCK_OPT = typer.Option(None, help="Block size 'B,H' [m] of --wall or of the columns of "
-                         "--colonnade.")
-COLONNADE_OPT = typer.Option(None, help="A colonnade: number of --block columns (2: a "
-                             "trilithon) under one lintel.")
-BAY_OPT = typer.Option(None, help="Colonnade: clear spacing of the columns [m].")
-LINTEL_OPT = typer.Option(None, help="Colonnade: lintel depth [m].")
-ASSEMBLY_OPT = typer.Option(None, help="An assembly of convex blocks from a JSON file "
-                            "(docs/theory.md §10).")
-
 
 def _ints(name: str, text: str, n: int) -> list[int]:
     vals = float_list(name, text)

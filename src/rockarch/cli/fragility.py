@@ -14,13 +14,13 @@ import typer
 from rockarch import fragility as fr
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
-from rockarch.cli._common import Shape, System, echo_err, guarded, value
+from rockarch.cli._common import echo_err, guarded
+from rockarch.cli._groups import SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.suite import read_suite
-from rockarch.systems import system as make_system
 
 #: The --im choices (the library's registry).
 Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
@@ -29,6 +29,18 @@ Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
 #: bisection round is one simulation per record, in parallel only across processes
 #: (benchmarks/fragility.py: 1.9x on 2 cores for 50 records).
 POOL_MIN_RECORDS = 16
+
+
+def ida_sweep_options(opts: dict, n_records: int) -> dict:
+    """The sweep options of an IDA (fragility, design --system --records): as given, else
+    local processes on every core from :data:`POOL_MIN_RECORDS` records (records in
+    parallel: bisection rounds are one simulation each)."""
+    sweep = sweep_options(opts)
+    if sweep["workers"] is None and sweep["scheduler"] is None \
+            and sweep["dask_workers"] is None and n_records >= POOL_MIN_RECORDS \
+            and (os.cpu_count() or 1) > 1:
+        sweep["workers"] = os.cpu_count()
+    return sweep
 
 
 def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
@@ -45,24 +57,9 @@ def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
 
 @app.command(short_help="Fragility curve of a structure over a suite of records (IDA).")
 @guarded
+@options(SYSTEM, before="p")
+@options(SWEEP)
 def fragility(
-    system: System = typer.Option("block", help="Structure (as in `rockarch oas`)."),
-    alpha: float = typer.Option(None, help="block/frame: slenderness atan(B/H) [rad]."),
-    shape: Shape = typer.Option(None, help="fourhinge/mdof: arch shape."),
-    rise_over_span: float = typer.Option(None, help="fourhinge/mdof: f/l."),
-    thickness_over_span: float = typer.Option(None, help="fourhinge/mdof: d/l."),
-    blocks: int = typer.Option(None, help="fourhinge/mdof: voussoirs."),
-    column: str = cc.COLUMN_OPT, friction: float = cc.FRICTION_OPT,
-    spans: int = cc.SPANS_OPT, pier_height: float = cc.PIER_H_OPT,
-    pier_width: float = cc.PIER_W_OPT, pier_blocks: int = cc.PIER_BLOCKS_OPT,
-    abutments: bool = cc.ABUT_OPT, wall: str = cc.WALL_OPT, block: str = cc.BLOCK_OPT,
-    colonnade: int = cc.COLONNADE_OPT, bay: float = cc.BAY_OPT,
-    lintel: float = cc.LINTEL_OPT, assembly: Path = cc.ASSEMBLY_OPT,
-    mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
-    delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
-    ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
-    restitution: float = typer.Option(None, help="Coefficient of restitution in [0, 1] "
-                                      "(default: the structure's own impact law)."),
     p: float = typer.Option(..., "--p", help="Frequency parameter of the structure [1/s]."),
     records: list[Path] = typer.Option(..., "--records", help="Folder of .AT2 records or "
                                        "record files; several may follow one --records."),
@@ -80,13 +77,10 @@ def fragility(
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="Bootstrap resamples of the band "
                                   "(0: none)."),
     level: float = typer.Option(0.95, help="Confidence level of the band."),
-    t_free: float = cc.TFREE_OPT, g: float = cc.G_OPT,
     plot: Path = typer.Option(None, help="Write a PNG of the curve, band and points."),
     json_out: bool = cc.JSON_OPT,
     progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
-    workers: int = cc.WORKERS_OPT, scheduler: str = cc.SCHEDULER_OPT,
-    dask_workers: int = cc.DASK_WORKERS_OPT, store: Path = cc.STORE_OPT,
-    no_store: bool = cc.NO_STORE_OPT,
+    **opts,
 ) -> None:
     """Incremental dynamic analysis at one p and a lognormal fragility (maximum likelihood,
     censored records included, bootstrap band). PGA and Sa in m/s², PGV in m/s."""
@@ -95,12 +89,7 @@ def fragility(
         raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
     if not 0 < level < 1:
         raise ValueError(f"--level must lie in (0, 1), got {level}")
-    sysobj = make_system(system.value, alpha=alpha, shape=value(shape),
-                         rise_over_span=rise_over_span,
-                         thickness_over_span=thickness_over_span, blocks=blocks,
-                         mass_ratio=mass_ratio, delta=delta, ap_min=ap_min, g=g,
-                         restitution=restitution, t_free=t_free,
-                         **cc.mdof_structure(locals()))
+    sysobj = system_of(opts)
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
     if ratio_max is not None and not ratio_max > 1:
@@ -111,11 +100,7 @@ def fragility(
     check_outputs((plot, "--plot", "png"))
     suite = read_suite(list(records) + list(more or []), units=units)
     motions = suite.motions
-    if workers is None and scheduler is None and dask_workers is None \
-            and len(motions) >= POOL_MIN_RECORDS and (os.cpu_count() or 1) > 1:
-        workers = os.cpu_count()  # records in parallel (bisection rounds are 1 sim each)
-    with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
-                    store_dir=store, no_store=no_store, n_sims=ratios.size * len(motions),
+    with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
         res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
                      period=period, ratio=ratios, tol=tol,

@@ -16,37 +16,35 @@ from rockarch.arch.replacement import RULES
 from rockarch.charsite import characteristic
 from rockarch.cli._app import app
 from rockarch.cli._common import (
-    ARCH_RISE_OPT,
-    ARCH_SHAPE_OPT,
-    ARCH_SPAN_OPT,
-    ARCH_THICK_OPT,
-    DASK_WORKERS_OPT,
     G_OPT,
     JSON_OPT,
-    NO_STORE_OPT,
-    SCHEDULER_OPT,
-    STORE_OPT,
     TFREE_OPT,
     TOL_OPT,
-    WORKERS_OPT,
-    Shape,
+    System,
     echo_err,
     guarded,
+    mdof_structure,
     p_grid,
     print_json,
     ratio_grid,
+    value,
 )
+from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
-from rockarch.design import design_check
+from rockarch.cli.fragility import _print_table, ida_sweep_options
+from rockarch.design import design_check, design_system
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
 from rockarch.output.fragility_plots import fragility_html
-from rockarch.output.report import write_report
+from rockarch.output.report import write_report, write_system_report
 from rockarch.suite import read_suite
+from rockarch.systems import system as make_system
 
 
 @app.command("site-oas", short_help="Site OAS of a set of records: envelope and percentile.")
 @guarded
+@options(SYSTEM, before="percentile")
+@options(SWEEP)
 def site_oas(
     records: list[Path] = typer.Option(None, "--records", help="Record files (.AT2 or "
                                        "two-column) or folders of .AT2; several may follow "
@@ -59,53 +57,84 @@ def site_oas(
     ratio_min: float = typer.Option(1.0, help="Smallest ap/ap,min."),
     ratio_max: float = typer.Option(5.0, help="Largest ap/ap,min."),
     ratio_steps: int = typer.Option(81, help="Number of ap/ap,min values (at least 2)."),
-    alpha: float = typer.Option(site_mod.ALPHA, help="Slenderness of the site's block [rad]."),
     percentile: float = typer.Option(50.0, help="Percentile of the records' boundaries "
                                      "stored as the characteristic curve (lower: safer)."),
-    tol: float = TOL_OPT, t_free: float = TFREE_OPT,
+    tol: float = TOL_OPT,
     out: Path = typer.Option(..., help="NetCDF file to write."),
     plot: Path = typer.Option(None, help="PNG of the records' OAS boundaries and curves."),
     json_out: bool = JSON_OPT,
-    workers: int = WORKERS_OPT, scheduler: str = SCHEDULER_OPT,
-    dask_workers: int = DASK_WORKERS_OPT, store: Path = STORE_OPT, no_store: bool = NO_STORE_OPT,
+    **opts,
 ) -> None:
-    """Site OAS: slender-block OAS of every record, their envelope and percentile curve."""
+    """Site OAS: the OAS of a structure (default the slender block of --alpha, default
+    0.05) for every record, their envelope and percentile curve. For any other --system the
+    p axis is that of `rockarch oas`: the structure of the given shape scaled to each p
+    (size ∝ 1/p²)."""
     paths = list(records or []) + list(more or [])
+    is_block = opts["system"].value == "block"
+    if is_block and opts["alpha"] is None:
+        opts["alpha"] = site_mod.ALPHA
+    sysobj = system_of(opts)
     check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
     motions, hashes = site_mod.load_records(paths, units)
     ps = p_grid(None, p_min, p_max, p_steps)
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for a site OAS")
     ratios = ratio_grid(ratio_min, ratio_max, ratio_steps)
-    with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
-                    store_dir=store, no_store=no_store,
-                    n_sims=ps.size * ratios.size * len(motions),
+    with open_sweep(**sweep_options(opts), n_sims=ps.size * ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
-        ds = site_mod.site_oas(motions, ps, ratios, alpha=alpha, percentile=percentile,
-                               tol=tol, hashes=hashes, t_free=t_free,
-                               progress=sys.stderr.isatty(), executor=executor,
-                               store=chunk_store)
+        ds = site_mod.site_oas(motions, ps, ratios, system=sysobj, percentile=percentile,
+                               tol=tol, hashes=hashes, progress=sys.stderr.isatty(),
+                               executor=executor, store=chunk_store)
 
     ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
     with staged(out, plot) as (out_tmp, plot_tmp):
         site_mod.save(ds, out_tmp)
         if plot is not None:
             save_figure(plot_site(ds), plot_tmp)
+    axis = {} if is_block else {"system": sysobj.name, "p_structure": sysobj.p_ref,
+                                "ap_min": sysobj.ap_min}
     if json_out:
         print_json({"records": list(ds["record_name"].values), "p": ds["p"].values,
                     "envelope": ds["envelope"].values,
-                    "characteristic": ds["characteristic"].values, "out": str(out)})
+                    "characteristic": ds["characteristic"].values, "out": str(out), **axis})
         return
     typer.echo(f"site OAS of {len(motions)} record(s) written to {out}")
+    if axis:
+        typer.echo(f"{sysobj.name}: ap,min = {sysobj.ap_min:.4g} m/s²; p axis: the structure "
+                   f"scaled to each p (size ∝ 1/p²), as given it has p = {sysobj.p_ref:.4g} "
+                   "1/s")
     for path in ([plot] if plot else []):
         typer.echo(f"wrote {path}")
 
 
-@app.command(short_help="Largest safe PGA of an arch at a site (paper Sect 9 method).")
+@app.command(short_help="Largest safe PGA of an arch (paper Sect 9 method) or of any "
+             "--system at a site.")
 @guarded
+@options(MDOF, before="system")
+@options(SWEEP)
 def design(
-    shape: Shape = ARCH_SHAPE_OPT, span: float = ARCH_SPAN_OPT, rise: float = ARCH_RISE_OPT,
-    thickness: float = ARCH_THICK_OPT,
+    system: System = typer.Option(None, help="Any structure instead of the arch's "
+                                  "replacement catenary: its own ap,min and, with --records, "
+                                  "its own IDA (with --site: the equivalent SDOF). Options "
+                                  "as in `rockarch oas`, at real size (arches: --shape "
+                                  "--span --rise --thickness)."),
+    alpha: float = typer.Option(None, help="block/frame: slenderness atan(B/H) [rad]."),
+    p: float = typer.Option(None, "--p", help="block/frame/sdof: frequency parameter "
+                            "[1/s] (fourhinge/mdof: from their size)."),
+    mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
+    delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
+    ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
+    percentile: float = typer.Option(50.0, help="With --records: percentile of the records' "
+                                     "boundaries (--system: collapse PGAs) read by --curve "
+                                     "characteristic (lower: safer)."),
+    ratio_max: float = typer.Option(None, help="--system with --records: IDA scan limit "
+                                    "ap/ap,min (default 5); records safe up to it are "
+                                    "censored."),
+    ratio_steps: int = typer.Option(81, help="--system with --records: IDA scan values of "
+                                    "ap/ap,min from 1."),
+    tol: float = TOL_OPT, t_free: float = TFREE_OPT,
+    bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="--system with --records: bootstrap "
+                                  "resamples of the fragility's interval (0: none)."),
     site_file: Path = typer.Option(None, "--site", help="Site OAS file (rockarch site-oas)."),
     records: list[Path] = typer.Option(None, "--records", help="Instead of --site: records "
                                        "(folder or files); the site OAS, its characteristic "
@@ -129,15 +158,28 @@ def design(
                                          "mass) or original (the arch's mass on its axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
-    workers: int = WORKERS_OPT, scheduler: str = SCHEDULER_OPT,
-    dask_workers: int = DASK_WORKERS_OPT, store: Path = STORE_OPT,
-    no_store: bool = NO_STORE_OPT,
     json_out: bool = JSON_OPT,
+    **opts,
 ) -> None:
-    """Largest safe PGA of an arch at a site (paper Sect. 9): replacement catenary, site OAS.
+    """Largest safe PGA of a structure at a site. An arch by the paper's method (Sect. 9):
+    replacement catenary, site OAS. Any --system (docs/theory.md Sect. 11.4): its own
+    ap,min and its own IDA over --records (envelope or percentile, fragility), or the
+    equivalent SDOF on a block's --site file.
 
-    With --records the site OAS is computed on the sweep executor and store (the sweep
-    options as in oas)."""
+    With --records the computation runs on the sweep executor and store (the sweep options
+    as in oas)."""
+    args = {k: v for k, v in locals().items() if k != "opts"} | opts
+    if system is not None:
+        _design_system(args, records or [], json_out)
+        return
+    unused = [k for k in _SYSTEM_ONLY if args[k] is not None]
+    shape, span, rise, thickness = (opts[k] for k in ("shape", "span", "rise", "thickness"))
+    if unused:
+        raise ValueError(f"--{unused[0].replace('_', '-')} goes with --system KIND (the arch "
+                         "design takes --shape --span --rise --thickness)")
+    if shape is None or span is None or rise is None or thickness is None:
+        raise ValueError("give the arch (--shape --span --rise --thickness) or --system KIND "
+                         "with its options")
     if thickness_rule not in RULES:
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
@@ -149,15 +191,15 @@ def design(
     if records:
         suite = read_suite(records)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
-        with open_sweep(workers=workers, scheduler=scheduler, dask_workers=dask_workers,
-                        store_dir=store, no_store=no_store, n_sims=n_sims,
+        with open_sweep(**sweep_options(opts), n_sims=n_sims,
                         echo=echo_err) as (executor, chunk_store):
             site_ds = charsite.site_from_records(suite, executor=executor, store=chunk_store,
+                                                percentile=percentile,
                                                 progress=sys.stderr.isatty())
         if save_site is not None:
             site_mod.save(site_ds, save_site)
     else:
-        site_ds = site_mod.load(site_file)
+        site_ds = site_mod.check_block_site(site_mod.load(site_file), site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
     res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g,
@@ -208,3 +250,104 @@ def design(
         typer.echo(f"wrote {report}")
 
 
+#: design options of --system only (the arch design by the replacement catenary refuses them).
+_SYSTEM_ONLY = ("alpha", "p", "blocks", *(name for name, _, _ in STRUCTURE), "mass_ratio",
+                "delta", "ap_min", "ratio_max")
+#: design options of the arch design only (with their defaults: given when they differ).
+_ARCH_ONLY = {"thickness_rule": "equivalent", "replacement_axis": "catenary",
+              "replacement_mass": "own", "save_site": None}
+
+
+def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
+    """``rockarch design --system KIND``: ra.system from the options, then
+    :func:`rockarch.design.design_system` (records: its IDA; --site: equivalent SDOF)."""
+    kind = opt["system"].value
+    extra = [k for k, v in _ARCH_ONLY.items() if opt[k] != v]
+    if extra:
+        raise ValueError(f"--{extra[0].replace('_', '-')} belongs to the arch design (without "
+                         "--system)")
+    if (opt["site_file"] is None) == (not records):
+        raise ValueError("give either --site FILE or --records DIR")
+    check_outputs((opt["report"], "--report", "html"))
+    if kind in ("frame", "sdof") and opt["p"] is None:
+        raise ValueError(f"--system {kind} needs --p (its frequency parameter [1/s])")
+    if kind in ("fourhinge", "mdof") and opt["p"] is not None:
+        raise ValueError(f"--p: a {kind} structure's p follows from its size (give --span "
+                         "--rise --thickness, or the blocks in metres)")
+    sysobj = make_system(kind, alpha=opt["alpha"], p=opt["p"], shape=value(opt["shape"]),
+                         span=opt["span"], rise=opt["rise"], thickness=opt["thickness"],
+                         blocks=opt["blocks"], mass_ratio=opt["mass_ratio"],
+                         delta=opt["delta"], ap_min=opt["ap_min"], g=opt["g"],
+                         t_free=opt["t_free"], **mdof_structure(opt))
+    kw = {"curve": opt["curve"], "percentile": opt["percentile"], "g": opt["g"],
+          "pga": opt["pga"], "probability": opt["probability"]}
+    suite = None
+    if opt["site_file"] is not None:
+        res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
+                            g=kw["g"])
+    else:
+        if opt["ratio_steps"] < 2 or (opt["ratio_max"] or 2.0) <= 1:
+            raise ValueError("the IDA scan needs --ratio-steps >= 2 and --ratio-max > 1")
+        if opt["bootstrap"] < 0:
+            raise ValueError(f"--bootstrap must be >= 0, got {opt['bootstrap']}")
+        ratios = ratio_grid(1.0, opt["ratio_max"], opt["ratio_steps"])
+        suite = read_suite(records)
+        with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
+                        echo=echo_err) as (executor, chunk_store):
+            res = design_system(sysobj, records=suite, ratio=ratios, tol=opt["tol"],
+                                n_bootstrap=opt["bootstrap"], executor=executor,
+                                store=chunk_store, progress=sys.stderr.isatty(), **kw)
+    for msg in (res.note,) if res.note else ():
+        echo_err(f"warning: {msg}; no lognormal fit")
+    if res.ratio_is_lower_bound:
+        echo_err("warning: the site curve does not collapse the structure within the ratio "
+                 "range; the safe PGA is a lower bound")
+    if opt["report"] is not None:
+        write_system_report(res, opt["report"], command=_command_line(opt), suite=suite)
+    if json_out:
+        print_json(res.to_dict())
+        return
+    _print_system_design(res)
+    if opt["report"] is not None:
+        typer.echo(f"wrote {opt['report']}")
+
+
+def _command_line(opt: dict) -> str:
+    """The command with the options given (those that differ from their default), as the
+    report's way to rerun it."""
+    import shlex
+
+    import click
+
+    words = ["rockarch", "design"]
+    command = typer.main.get_command(app).get_command(None, "design")
+    for prm in command.params:
+        v = opt.get(prm.name)
+        if v is None or v == prm.default or prm.name in ("report", "json_out") or v == []:
+            continue
+        if isinstance(prm, click.Option) and prm.is_flag:
+            words.append(prm.opts[0] if v else prm.secondary_opts[0])
+            continue
+        for item in v if isinstance(v, (list, tuple)) else [v]:
+            words += [prm.opts[0], str(getattr(item, "value", item))]
+    return " ".join(shlex.quote(w) for w in words)
+
+
+def _print_system_design(res) -> None:
+    slide = ""
+    if res.ap_min_no_sliding is not None:
+        slide = (f" (friction-aware; {res.ap_min_no_sliding:.4g} without sliding: the "
+                 f"collapse mechanism {'slides' if res.sliding else 'rocks'})")
+    typer.echo(f"{res.system}: p = {res.p:.4g} 1/s, ap,min = {res.ap_min:.4g} m/s²{slide}")
+    if res.fragility is not None:
+        _print_table(res.fragility)
+    how = ("equivalent SDOF on the block site OAS" if res.method == "equivalent-sdof" else
+           "over the records' collapse points")
+    name = res.curve if res.curve == "envelope" else f"{res.percentile:g}th percentile"
+    typer.echo(f"site {name} ({how}): ap/ap,min = {res.ratio:.4f} -> safe PGA "
+               f"{res.pga_safe:.3f} m/s² = {res.pga_safe / res.g:.3f} g")
+    f = res.summary or {}
+    for key in ("probability_at_pga", "pga_at_probability"):
+        if key in f:
+            typer.echo(f"  P(collapse) = {f[key]['probability']:.3g} at PGA "
+                       f"{f[key]['pga']:.3f} m/s²")

@@ -56,6 +56,21 @@ def band_solve(n, kb, rhs, lb, out):
 
 
 @nb.njit(cache=True)
+def masked_band(n, wb, rows, eps, kb):
+    """The band of W (+ eps on the diagonal) restricted to ``rows``; the other rows and
+    columns become the identity, so that one banded solve gives the subproblem."""
+    for i in range(n):
+        for d in range(KD + 1):
+            j = i - d
+            if j < 0:
+                kb[i, d] = 0.0
+            elif rows[i] and rows[j]:
+                kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
+            else:
+                kb[i, d] = 1.0 if d == 0 else 0.0
+
+
+@nb.njit(cache=True)
 def wmul(n, wb, lam, i):
     """(W·lam)_i from the lower band."""
     KD = wb.shape[1] - 1  # noqa: N806
@@ -85,15 +100,8 @@ def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
         if i % 3 == 2:
             free[i] = inset[i]
     for it in range(_MAX_PIVOTS):
+        masked_band(n, wb, free, eps, kb)
         for i in range(n):
-            for d in range(KD + 1):
-                j = i - d
-                if j < 0:
-                    kb[i, d] = 0.0
-                elif free[i] and free[j]:
-                    kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
-                else:
-                    kb[i, d] = 1.0 if d == 0 else 0.0
             rhs[i] = -ufree[i] if free[i] else 0.0
         if not band_solve(n, kb, rhs, lb, sol):
             return -1

@@ -38,12 +38,34 @@ import math
 import numba as nb
 import numpy as np
 
-from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp
+from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp, masked_band
 from rockarch.mdof.kinematics import advance, cap_projection_energy, count_joints, cumint
 
 CHECK_EVERY = 4
 #: The collapse test runs once a block has rotated by CHECK_FROM·delta_ref.
 CHECK_FROM = 0.5
+
+
+@nb.njit(cache=True)
+def _arm(b, moving, c, s, r0, r1, x, y):
+    """Arm (rotated body-frame point r) and position of a contact corner on body b; a
+    corner on the ground (``moving`` false) has no arm and stays at r."""
+    if moving:
+        ax = c * r0 - s * r1
+        ay = s * r0 + c * r1
+        return ax, ay, x[b] + ax, y[b] + ay
+    return 0.0, 0.0, r0, r1
+
+
+@nb.njit(cache=True)
+def _rows(jl, jr, r, dx, dy, ax, ay, bx, by):
+    """Jacobian row r of a contact direction d = (dx, dy) with arms a (L body) and b (R)."""
+    jl[r, 0] = -dx
+    jl[r, 1] = -dy
+    jl[r, 2] = -(ax * dy - ay * dx)
+    jr[r, 0] = dx
+    jr[r, 1] = dy
+    jr[r, 2] = bx * dy - by * dx
 
 
 @nb.njit(cache=True)
@@ -77,34 +99,10 @@ def _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr):
         bdx = 0.0
         bdy = 0.0
         for c in range(2):
-            if lb >= 0:
-                ax = cl * rl[k, c, 0] - sl * rl[k, c, 1]
-                ay = sl * rl[k, c, 0] + cl * rl[k, c, 1]
-                plx = x[lb] + ax
-                ply = y[lb] + ay
-            else:
-                ax = 0.0
-                ay = 0.0
-                plx = rl[k, c, 0]
-                ply = rl[k, c, 1]
-            if rb < nbod:
-                bx = cr * rr[k, c, 0] - sr * rr[k, c, 1]
-                by = sr * rr[k, c, 0] + cr * rr[k, c, 1]
-                prx = x[rb] + bx
-                pry = y[rb] + by
-            else:
-                bx = 0.0
-                by = 0.0
-                prx = rr[k, c, 0]
-                pry = rr[k, c, 1]
+            ax, ay, plx, ply = _arm(lb, lb >= 0, cl, sl, rl[k, c, 0], rl[k, c, 1], x, y)
+            bx, by, prx, pry = _arm(rb, rb < nbod, cr, sr, rr[k, c, 0], rr[k, c, 1], x, y)
             gap[k, c] = nx * (prx - plx) + ny * (pry - ply)
-            r = 3 * k + c
-            jl[r, 0] = -nx
-            jl[r, 1] = -ny
-            jl[r, 2] = -(ax * ny - ay * nx)
-            jr[r, 0] = nx
-            jr[r, 1] = ny
-            jr[r, 2] = bx * ny - by * nx
+            _rows(jl, jr, 3 * k + c, nx, ny, ax, ay, bx, by)
             if c == 0 or gap[k, 1] < gap[k, 0]:
                 best = c
                 bax = ax
@@ -118,12 +116,7 @@ def _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr):
         sy = nx
         gap[k, 2] = sx * bdx + sy * bdy  # tangential offset of the corners in contact
         r = 3 * k + 2
-        jl[r, 0] = -sx
-        jl[r, 1] = -sy
-        jl[r, 2] = -(bax * sy - bay * sx)
-        jr[r, 0] = sx
-        jr[r, 1] = sy
-        jr[r, 2] = bbx * sy - bby * sx
+        _rows(jl, jr, r, sx, sy, bax, bay, bbx, bby)
         if lb < 0:
             jl[3 * k, :] = 0.0
             jl[3 * k + 1, :] = 0.0
@@ -164,6 +157,25 @@ def _assemble_w(nbod, nj, jl, jr, im, ii, wb):
 
 
 @nb.njit(cache=True)
+def _apply(nbod, n, jl, jr, lam, im, ii, ux, uy, uphi):
+    """u += M⁻¹ Jᵀ λ over the contact rows (λ: impulses on velocities, or position
+    corrections on positions); joint k acts on bodies k − 1 (L) and k (R)."""
+    for r in range(n):
+        if lam[r] == 0.0:
+            continue
+        k = r // 3
+        if k - 1 >= 0:
+            b = k - 1
+            ux[b] += jl[r, 0] * lam[r] * im[b]
+            uy[b] += jl[r, 1] * lam[r] * im[b]
+            uphi[b] += jl[r, 2] * lam[r] * ii[b]
+        if k < nbod:
+            ux[k] += jr[r, 0] * lam[r] * im[k]
+            uy[k] += jr[r, 1] * lam[r] * im[k]
+            uphi[k] += jr[r, 2] * lam[r] * ii[k]
+
+
+@nb.njit(cache=True)
 def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, hh, eps,
                   tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset, free, sol, vx, vy,
                   om):
@@ -196,19 +208,7 @@ def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, h
         vx[j] = vfx[j]
         vy[j] = vfy[j]
         om[j] = vfo[j]
-    for r in range(n):
-        if lam[r] == 0.0:
-            continue
-        k = r // 3
-        lb_ = k - 1
-        if lb_ >= 0:
-            vx[lb_] += jl[r, 0] * lam[r] * im[lb_]
-            vy[lb_] += jl[r, 1] * lam[r] * im[lb_]
-            om[lb_] += jl[r, 2] * lam[r] * ii[lb_]
-        if k < nbod:
-            vx[k] += jr[r, 0] * lam[r] * im[k]
-            vy[k] += jr[r, 1] * lam[r] * im[k]
-            om[k] += jr[r, 2] * lam[r] * ii[k]
+    _apply(nbod, n, jl, jr, lam, im, ii, vx, vy, om)
     return its
 
 
@@ -221,15 +221,8 @@ def _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb,
     n = 3 * nj
     _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr)
     _assemble_w(nbod, nj, jl, jr, im, ii, wb)
+    masked_band(n, wb, keep, eps, kb)
     for i in range(n):
-        for d in range(KD + 1):
-            j = i - d
-            if j < 0:
-                kb[i, d] = 0.0
-            elif keep[i] and keep[j]:
-                kb[i, d] = wb[i, d] + (eps if d == 0 else 0.0)
-            else:
-                kb[i, d] = 1.0 if d == 0 else 0.0
         # normal rows: close the gap; no-slip rows: undo a drift-sized tangential offset
         # (a larger one, left by a separation, is kept: pulling it back would add energy)
         if keep[i] and (i % 3 != 2 or abs(gap[i // 3, 2]) <= slip_tol):
@@ -238,19 +231,7 @@ def _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb,
             rhs[i] = 0.0
     if not band_solve(n, kb, rhs, lb, mu):
         return
-    for r in range(n):
-        if mu[r] == 0.0:
-            continue
-        k = r // 3
-        if k - 1 >= 0:
-            b = k - 1
-            x[b] += jl[r, 0] * mu[r] * im[b]
-            y[b] += jl[r, 1] * mu[r] * im[b]
-            ph[b] += jl[r, 2] * mu[r] * ii[b]
-        if k < nbod:
-            x[k] += jr[r, 0] * mu[r] * im[k]
-            y[k] += jr[r, 1] * mu[r] * im[k]
-            ph[k] += jr[r, 2] * mu[r] * ii[k]
+    _apply(nbod, n, jl, jr, mu, im, ii, x, y, ph)
 
 
 @nb.njit(cache=True)

@@ -65,11 +65,12 @@ def plot_fragility(frag: Fragility, im_range=None):
     return fig
 
 
-def fragility_html(frag: Fragility, summary: dict, suite=None) -> str:
+def fragility_html(frag: Fragility, summary: dict, suite=None, *,
+                   of: str = "the replacement") -> str:
     """HTML sections (figures inlined as base64 PNG) for the design report: the suite's
     response spectra (Sa/PGA, if ``suite`` is given), then the replacement's fragility:
     the curve with its band and points, θ, β and the probabilities of
-    :func:`rockarch.fragility.design_summary`."""
+    :func:`rockarch.fragility.design_summary`; ``of`` names the structure in the title."""
 
     spectra = ""
     if suite is not None:
@@ -84,7 +85,7 @@ def fragility_html(frag: Fragility, summary: dict, suite=None) -> str:
             d = summary[key]
             rows.append((f"P(collapse) = {d['probability']:.3g} at PGA [m/s²]",
                          f"{d['pga']:.3f}"))
-    return (spectra + "<h2>Fragility of the replacement (IDA over the records)</h2>\n"
+    return (spectra + f"<h2>Fragility of {of} (IDA over the records)</h2>\n"
             f"{inline_figure(plot_fragility(frag), 'fragility')}\n"
             f"{key_value_table(rows)}\n<p>Lognormal fit by maximum likelihood (records "
             "that do not collapse within the scan are censored), docs/theory.md §11.3.</p>")

@@ -6,11 +6,12 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from rockarch import __version__
 from rockarch.constants import G_STANDARD
-from rockarch.design import DesignResult
+from rockarch.design import DesignResult, SystemDesign
 from rockarch.output.arch_plots import design_arch_figure
 from rockarch.output.figures import new_figure
 from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
@@ -131,3 +132,79 @@ def write_report(result: DesignResult, site_ds: xr.Dataset, path, *, command: st
     """Write the HTML report atomically (see :func:`report_html`)."""
     return write_text(path, report_html(result, site_ds, command=command, inputs=inputs,
                                         site_path=site_path, extra_html=extra_html))
+
+
+#: What the design of any structure assumes, per method (docs/theory.md §11.4).
+SYSTEM_ASSUMPTIONS = {
+    "records": [
+        "No equivalence: the structure itself is simulated at its own size under every record "
+        "scaled up until it collapses (incremental dynamic analysis, docs/theory.md Eq. "
+        "(11.30)); the safe PGA is the lowest collapse PGA over the records (envelope) or "
+        "their chosen percentile, Eq. (11.34).",
+        "ap,min (the unit of the scan) is the limit-analysis value with associative Coulomb "
+        "friction, Eq. (10.4); where a contact must slide while it opens it can be too high "
+        "(docs/theory.md §10); the time histories do not depend on it.",
+        "Collapse is declared once the structure, frozen at rest, would move away under "
+        "gravity alone (past its neutral configuration, docs/theory.md §6): conservative.",
+        "Records that do not collapse the structure up to the top of the scan are censored; "
+        "a safe PGA read on a censored record is a lower bound.",
+    ],
+    "equivalent-sdof": [
+        "The structure is replaced by the slender block with the same p and ap,min (its own "
+        "rocking collapse mechanism, docs/theory.md Eq. (11.35)); its collapse mechanism "
+        "does not slide (ap,min with friction equals ap,min without sliding).",
+        "The slender block's OAS neglects most of the energy dissipated at impacts.",
+        "The site curve is read at the grid value of p on the safe side; where no record "
+        "overturns within the computed ratio range, the top of the range is used (a lower "
+        "bound).",
+    ],
+}
+
+
+def system_report_html(result: SystemDesign, *, command: str, suite=None) -> str:
+    """The design report of any structure (:func:`rockarch.design.design_system`) as one
+    HTML page: the safe PGA, the structure's p and ap,min, the records' collapse points
+    and fragility (``suite``: their response spectra and file hashes), the assumptions and
+    the command that reruns it."""
+    from rockarch.output.fragility_plots import fragility_html
+
+    r, g = result, result.g
+    lower = " (at least: the governing record does not collapse the structure within the " \
+        "scan)" if r.ratio_is_lower_bound else ""
+    curve = r.curve if r.curve == "envelope" else f"{r.percentile:g}th percentile"
+    how = ("its own collapse points over the records" if r.method == "records" else
+           "a slender block's site OAS at its p (equivalent SDOF)")
+    slide = "" if r.ap_min_no_sliding is None else (
+        f" (friction-aware; {r.ap_min_no_sliding:.4f} m/s² without sliding: the collapse "
+        f"mechanism {'slides' if r.sliding else 'rocks'})")
+    body = f"""<h1>Overturning design check of {escape(r.system)}</h1>
+<p>rockarch {__version__}, {stamp()}. Method: {escape(how)}, docs/theory.md §11.4.</p>
+<div class="result">Largest safe peak ground acceleration:
+<b>{r.pga_safe:.3f} m/s² = {r.pga_safe / g:.3f} g</b><br>
+ap/ap,min = {r.ratio:.4f}{lower} ({escape(curve)}) at p = {r.p:.4f} 1/s;
+ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.</div>\n"""
+    frag = r.fragility
+    if frag is not None:
+        ida = frag.ida
+        body += "<h2>Collapse points (IDA)</h2>\n" + table(
+            ["record", "collapse PGA [m/s²]", "resurrections"],
+            [(n, f"{x:.4f}" if np.isfinite(x) else f"> {lim:.4f} (censored)", k)
+             for n, x, lim, k in zip(ida.records, ida.im_collapse, ida.im_limit,
+                                     ida.resurrections, strict=True)])
+        if frag.fit is not None:
+            body += fragility_html(frag, r.summary, suite, of=escape(r.system))
+    if suite is not None:
+        body += "<h2>Records</h2>\n" + table(["record", "PGA [g]", "SHA-256 of the file"], [
+            (rec.name, f"{rec.motion.pga / G_STANDARD:.4f}",
+             hashlib.sha256(Path(rec.path).read_bytes()).hexdigest() if rec.path else "")
+            for rec in suite])
+    body += f"""<h2>Assumptions</h2>
+<ol>{''.join(f'<li>{escape(a)}</li>' for a in SYSTEM_ASSUMPTIONS[r.method])}</ol>
+<h2>Inputs (to rerun)</h2>
+<p><code>{escape(command)}</code></p>"""
+    return page("rockarch design check", body)
+
+
+def write_system_report(result: SystemDesign, path, *, command: str, suite=None) -> Path:
+    """Write :func:`system_report_html` atomically."""
+    return write_text(path, system_report_html(result, command=command, suite=suite))

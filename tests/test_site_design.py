@@ -1,0 +1,184 @@
+"""Site OAS and design of any system kind (docs/theory.md §11.4): the IDA collapse points of
+an assembly are its OAS boundary × ap,min, the safe PGA is the envelope (or percentile) of
+them (Eq. (11.34)), a slender block's site file gives the equivalent-SDOF reading
+(Eq. (11.35)) and is refused for a mechanism that slides; the CLI is one line per error."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+import rockarch as ra
+from rockarch import site
+from rockarch.cli import app
+from rockarch.constants import G
+from rockarch.suite import write_at2
+
+runner = CliRunner()
+#: A coarse IDA scan (the equalities below are exact whatever the grid; coarse for speed).
+RATIO = np.round(np.linspace(1.0, 5.0, 9), 12)
+TOL = 0.05
+COLUMN = [(0.3, 1.0), (0.25, 0.8)]
+
+
+@pytest.fixture(scope="module")
+def clips():
+    """The strong first 12 s of the two bundled El Centro components."""
+    out = []
+    for c in (180, 270):
+        m = ra.el_centro(c)
+        out.append(ra.GroundMotion(m.t[:1200], m.a[:1200], name=f"ELC{c}-12s"))
+    return out
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory, clips):
+    d = tmp_path_factory.mktemp("clips")
+    for m in clips:
+        write_at2(d / f"{m.name}.AT2", m)
+    return d
+
+
+@pytest.fixture(scope="module")
+def block_site(clips):
+    """A slender block's site OAS (the paper's) around p = 2 … 4."""
+    return site.site_oas(clips, np.linspace(2.0, 4.0, 5), np.linspace(1.0, 5.0, 41),
+                         progress=False)
+
+
+def test_ida_points_are_the_oas_boundary_times_ap_min(clips):
+    sys_ = ra.system("mdof", column=COLUMN, friction=0.5)
+    d = ra.design_system(sys_, records=clips, ratio=RATIO, tol=TOL, n_bootstrap=0)
+    assert d.method == "records" and d.p == sys_.p_ref and d.ap_min == sys_.ap_min
+    x = d.fragility.ida.im_collapse
+    assert np.all(np.isfinite(x)), "both records collapse the column within the scan"
+    for k, m in enumerate(clips):
+        oas = ra.oas(sys_, m, p=[d.p], ratio=RATIO, tol=TOL)
+        # the same scan and bisection code (Eq. (11.30)): equal bit for bit
+        assert x[k] == oas["boundary"].values[0] * sys_.ap_min
+    # Eq. (11.34), envelope: the lowest collapse; and it is the site OAS of the structure
+    # at its own p (the same runs, so exactly equal)
+    assert d.pga_safe == x.min() and not d.ratio_is_lower_bound
+    ds = site.site_oas(clips, [d.p], RATIO, system=sys_, tol=TOL, progress=False)
+    assert ds["envelope"].values[0] == d.ratio
+    assert ds.attrs["system"] == sys_.name and "alpha" not in ds.attrs
+    with pytest.raises(ValueError, match="not of a slender block"):
+        site.check_block_site(ds)
+
+
+def test_percentile_curve_of_the_records(clips):
+    """Two records, 'lower' percentiles: 0 and 50 give the smaller collapse, 100 the
+    larger (the site-curve rule of site.curves)."""
+    sys_ = ra.system("block", alpha=0.1, p=2.0)
+    pts = {}
+    for q in (0.0, 50.0, 100.0):
+        d = ra.design_system(sys_, records=clips, curve="characteristic", percentile=q,
+                             n_bootstrap=0)
+        pts[q] = d.pga_safe
+        x = d.fragility.ida.im_collapse
+    assert pts[0.0] == pts[50.0] == x.min() and pts[100.0] == x.max() > x.min()
+
+
+@pytest.mark.parametrize("mu", [0.2, 0.3, 0.6, 1.0])
+def test_one_block_with_friction_closed_form(mu, block_site):
+    """One block 0.4 × 1.0 m on the ground: ap,min = min(mu, B/H)·g (docs/theory.md
+    §10); 1e-7: the LP solver's feasibility tolerance. Below B/H it slides, and a block's
+    site OAS is refused; above, the site curve is read at Housner's p."""
+    sys_ = ra.system("mdof", column=[(0.4, 1.0)], friction=mu)
+    assert sys_.ap_min == pytest.approx(min(mu, 0.4) * G, rel=1e-7)
+    r = math.hypot(0.2, 0.5)
+    assert sys_.p_ref == pytest.approx(math.sqrt(3 * G / (4 * r)), rel=1e-12)  # Eq. (1.2)
+    if mu < 0.4:
+        with pytest.raises(ValueError, match="slides"):
+            ra.design_system(sys_, site=block_site)
+        return
+    d = ra.design_system(sys_, site=block_site)
+    assert not d.sliding and d.method == "equivalent-sdof"
+    ratio, lower = site.curve_at(block_site, sys_.p_ref, "envelope")
+    assert (d.ratio, d.ratio_is_lower_bound) == (ratio, lower)
+    assert d.pga_safe == ratio * sys_.ap_min
+
+
+def test_a_sliding_block_never_collapses(clips):
+    """mu = 0.2 < B/H: the block slides at 0.2 g and does not overturn within 5 × that; the
+    records are censored, the safe PGA is the scan's top (a lower bound), no lognormal."""
+    sys_ = ra.system("mdof", column=[(0.4, 1.0)], friction=0.2)
+    d = ra.design_system(sys_, records=clips, ratio=RATIO, tol=TOL, n_bootstrap=0)
+    assert d.sliding and d.ratio_is_lower_bound and d.ratio == RATIO[-1]
+    assert d.fragility.fit is None and "fragility needs" in d.note
+    assert d.to_dict()["fragility"] is None
+
+
+def test_block_design_with_a_site_file(block_site):
+    d = ra.design_system(ra.system("block", alpha=0.1, p=2.0), site=block_site)
+    ratio, _ = site.curve_at(block_site, 2.0, "envelope")
+    assert d.ratio == ratio
+    # ap,min = g·tan(alpha) (Eq. (1.3)); 1e-15: the order of the two roundings
+    assert d.pga_safe == pytest.approx(ratio * G * math.tan(0.1), rel=1e-15)
+    with pytest.raises(ValueError, match="give its frequency parameter"):
+        ra.design_system(ra.system("block", alpha=0.1), site=block_site)
+
+
+def test_site_oas_cli_any_system(folder, tmp_path, block_site):
+    out = tmp_path / "col.nc"
+    res = runner.invoke(app, ["site-oas", "--system", "mdof", "--column", "0.3,1.0;0.25,0.8",
+                              "--friction", "0.5", "--records", str(folder), "--p-min", "2",
+                              "--p-max", "4", "--p-steps", "3", "--ratio-steps", "9",
+                              "--tol", "0.05", "--no-store", "--out", str(out), "--json"])
+    assert res.exit_code == 0, res.output
+    js = json.loads(res.stdout)
+    sys_ = ra.system("mdof", column=COLUMN, friction=0.5)
+    assert js["system"] == sys_.name and js["p_structure"] == sys_.p_ref
+    ds = site.load(out)
+    assert "p ~ 1/sqrt(size)" in ds.attrs["p_axis"]
+    b = np.where(np.isfinite(ds["boundary"].values), ds["boundary"].values, np.inf)
+    assert np.array_equal(np.where(np.isfinite(ds["envelope"].values),
+                                   ds["envelope"].values, np.inf), b.min(axis=0))
+    # the paper's design reads a block's site OAS only
+    bad = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                              "2.89", "--thickness", "0.35", "--site", str(out)])
+    assert bad.exit_code == 2 and "not of a slender block" in bad.stderr
+
+
+def test_design_cli_records_any_system(folder, tmp_path):
+    args = ["design", "--system", "mdof", "--column", "0.3,1.0;0.25,0.8", "--friction",
+            "0.5", "--records", str(folder), "--ratio-steps", "9", "--tol", "0.05",
+            "--bootstrap", "20", "--no-store"]
+    res = runner.invoke(app, [*args, "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["method"] == "records" and out["sliding"] is False
+    pts = [q["im_collapse"] for q in out["points"]]
+    assert out["pga_safe"] == min(pts)
+    # two records, no censoring: the MLE is the closed form (mean and std of ln x)
+    assert out["fragility"]["median"] == pytest.approx(math.exp(np.log(pts).mean()),
+                                                       rel=1e-12)
+    rep = tmp_path / "r.html"
+    text = runner.invoke(app, [*args, "--report", str(rep)])
+    assert text.exit_code == 0 and "safe PGA" in text.stdout and "ELC180-12s" in text.stdout
+    html = rep.read_text()
+    # self-contained (spectra and fragility inlined), with the command that reruns it
+    assert not re.search(r'(src|href)\s*=\s*"(https?:|//)', html)
+    assert html.count('src="data:image/png;base64,') == 2
+    assert "rockarch design --column" in html and "--system mdof" in html
+    assert "--friction 0.5" in html
+    assert f"{out['pga_safe']:.3f} m/s²" in html and "SHA-256" in html
+
+
+def test_design_cli_fourhinge_with_a_site_file(block_site, tmp_path):
+    """The arch's own four-hinge mechanism as the equivalent SDOF (no replacement)."""
+    f = tmp_path / "site.nc"
+    site.save(block_site, f)
+    arch = ["--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness", "0.35"]
+    res = runner.invoke(app, ["design", "--system", "fourhinge", *arch, "--site", str(f),
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    sys_ = ra.system("fourhinge", shape="circular", span=10, rise=2.89, thickness=0.35)
+    ratio, _ = site.curve_at(block_site, sys_.p_ref, "envelope")
+    assert (out["p"], out["ap_min"], out["ratio"]) == (sys_.p_ref, sys_.ap_min, ratio)
