@@ -96,8 +96,18 @@ def test_wall_closed_forms():
     w = bd.wall(4, 3, 0.4, 0.2)
     # running bond: courses of 3, and 2 + 2 halves
     assert w.n_blocks == 2 * 3 + 2 * 4 and w.kind == "wall"
-    # no sliding: the wall overturns as one block, lambda = width / height
-    assert w.ap_min == pytest.approx(G * 1.2 / 0.8, rel=LP_TOL)
+    # no sliding: a stepped wedge at the wall's end (the end half block of course 2, the
+    # end block of course 3 and the two end blocks of course 4) rocks about its lowest
+    # outer corner with every joint around it open (a macro-block solution of the
+    # non-associative problem, Eq. 10.9): moment balance of its centroid about that corner,
+    # lever 0.2 + 1/30 m over height 0.3667 m = 7/11 exactly
+    assert w.ap_min == pytest.approx(G * 7 / 11, rel=LP_TOL)
+    c = statics.collapse(w)
+    assert c.converged and np.flatnonzero(c.moving).tolist() in ([3, 7, 10, 11], [6, 9, 12, 13])
+    # associative friction (Eq. 10.4 alone) props the wall by shear on joints that carry no
+    # normal force: the whole wall's width / height, an unsafe 1.5 g
+    assoc = statics.collapse(w, friction="associative")
+    assert assoc.ap_min == pytest.approx(G * 1.2 / 0.8, rel=LP_TOL)
     # friction below that: a course slides on its bed joint at exactly mu·g
     assert bd.wall(4, 3, 0.4, 0.2, mu=0.3).ap_min == pytest.approx(0.3 * G, rel=LP_TOL)
     # joints: 4 ground faces under course 1, bed joints, head joints; all found
@@ -190,13 +200,14 @@ def test_supports_move_with_the_ground():
     assert set(zip(a.body_a.tolist(), a.body_b.tolist(), strict=True)) == {(-1, 0), (0, -1)}
     # pushed towards the support it cannot move: only the other direction remains
     assert not math.isfinite(statics.collapse(a, direction=-1).ap_min)  # inertia to +x
-    # rocking away needs its lower corner to slide up the support's face; the LP's
-    # associative friction (docs/theory.md §10, limitations) lets friction prop the corner,
-    # so its ap_min bounds the true B/H·g = 0.4 g from above
-    assert a.ap_min >= G * 0.4 * (1 - LP_TOL)
-    # without sliding its corner cannot slide up the support's face: nothing moves
-    with pytest.raises(ValueError, match="no rocking mechanism"):
-        bd.from_polygons(blk, supports=sup)
+    # rocking away, its lower corner slides up the support's face while the face opens:
+    # non-associative friction carries nothing there, ap_min = B/H·g = 0.4 g (closed form)
+    assert a.ap_min == pytest.approx(G * 0.4, rel=LP_TOL)
+    # associative friction (Eq. 10.4 alone) props the corner by a self-stress between the
+    # support and the base, above B/H (the defect that Eqs. 10.6-10.8 remove)
+    assert statics.collapse(a, friction="associative").ap_min > G * 0.4 * 1.05
+    # without sliding the same: an opening joint carries no shear, whatever mu
+    assert bd.from_polygons(blk, supports=sup).ap_min == pytest.approx(G * 0.4, rel=LP_TOL)
 
 
 def test_trilithon_mechanism_and_drawing(tmp_path):

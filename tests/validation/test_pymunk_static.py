@@ -62,14 +62,43 @@ def test_wall_sliding_course():
     assert below < STAND < FALL < above
 
 
-@pytest.mark.slow
-def test_wall_without_sliding_differs_where_expected():
-    # Known difference (docs/validation.md): with no sliding the LP locks the end half
-    # blocks of a running-bond wall by friction at their head joints (a self-stress that
-    # associative limit analysis may use), ap,min = B/H of the whole wall = 1.5 g; pymunk
-    # (non-associative Coulomb) lets a half block (b/h = 1) rock away: it stands at 0.9 g
-    # and collapses at 1.1 g, far below the LP's 1.5 g.
-    a = bd.wall(4, 3, 0.4, 0.2)
-    assert a.ap_min / a.g == pytest.approx(1.5, rel=1e-7)
-    below, above = _bracket(a, lam=1.0, factors=(0.9, 1.1))
+def _rect(x0, y0, w, h):
+    return [[x0, y0], [x0 + w, y0], [x0 + w, y0 + h], [x0, y0 + h]]
+
+
+@pytest.mark.parametrize("mu", [0.5, None])
+def test_block_rocks_away_from_a_support(mu):
+    # rocking away from the support its corner slides up the support's face as the face
+    # opens: non-associative friction (Eqs. 10.6-10.8) carries nothing there, B/H = 0.4 g
+    # (the associative LP alone gave 0.4348 g with mu = 0.5 and no mechanism without
+    # sliding); pymunk agrees within 1 %
+    a = bd.from_polygons([_rect(0, 0, 0.4, 1.0)], supports=[_rect(0.4, 0, 1, 2)], mu=mu)
+    assert a.ap_min / a.g == pytest.approx(0.4, rel=1e-7)  # HiGHS tolerance
+    below, above = _bracket(a)
     assert below < STAND < FALL < above
+
+
+#: The stepped end wedge of a running-bond wall (courses 2-4, 0.4 x 0.2 m blocks) rocking
+#: about its lowest outer corner with every joint around it unloaded: lever / height of its
+#: centroid = (0.2 + 1/30) / (0.3667) = 7/11 (the macro-block solution, Eq. 10.9).
+WEDGE = 7.0 / 11.0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("columns", [3, 10])
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_wall_without_sliding(columns, sign):
+    # no sliding: rockarch's ap_min is the stepped end wedge, 7/11 g (the associative LP
+    # alone propped the wall by shear on joints without normal force: the whole wall's
+    # B/H, 1.5 g and 5 g; the iteration of Eqs. 10.6-10.8 alone: an end half block of the
+    # top course, b/h = 1 g). pymunk's collapse load is not sharp here: depending on
+    # direction, solver iterations and load it collapses by that wedge from ~0.8 g or by
+    # the half block at ~1.0 g (docs/validation.md). Its bracket, in both directions:
+    # stands at 0.99 x ap_min (rockarch at the bottom, safe side), collapses at 1.01 g.
+    a = bd.wall(4, columns, 0.4, 0.2)
+    assert a.ap_min / a.g == pytest.approx(WEDGE, rel=1e-7)  # HiGHS tolerance
+    res = []
+    for f in (0.99 * WEDGE, 1.01):
+        drop, _ = po.run(a, lambda t, f=f: sign * f * a.g * min(t / 0.5, 1.0), 2.5)
+        res.append(drop / a.size)
+    assert res[0] < STAND < FALL < res[1]

@@ -8,6 +8,12 @@ and its contact forces; at a joint of friction coefficient μ the friction cone
 |t| ≤ μ·n is two linear constraints (exact in 2-D); μ = inf removes them (no sliding). The
 largest λ is the static collapse multiplier, ap,min = λ·g. scipy's HiGHS solves it.
 
+The cone as a yield surface is associative friction: it lets a joint that slides while it
+opens be propped by shear it could not carry. By default the LP is therefore followed by the
+non-associative iteration of :mod:`rockarch.mdof.nonassoc` (Eqs. (10.6)–(10.8)) and the
+macro-block search of :mod:`rockarch.mdof.macroblock` (Eq. (10.9)), the smaller of both;
+the associative value stays available (``friction="associative"``).
+
 The dual solution is the collapse mechanism: a virtual velocity (u, v, ω) per block, from
 which the contacts that open or slide follow (:class:`Collapse`). Its equivalent block
 (Eq. (10.5)) gives the reference frequency parameter p and neutral angle δ of a general
@@ -24,6 +30,8 @@ from scipy.optimize import linprog
 from scipy.sparse import coo_matrix
 
 from rockarch.constants import G
+from rockarch.mdof import macroblock as mb
+from rockarch.mdof import nonassoc as na
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
@@ -53,6 +61,12 @@ class Collapse:
     p, delta : float
         Equivalent-block frequency parameter [1/s] and neutral angle [rad], Eq. (10.5)
         (nan for a mechanism without rotation).
+    converged : bool
+        False if the non-associative iteration did not converge (then ap_min is the least
+        λ of its iterates, and a RuntimeWarning was issued).
+    iterations : int
+        Tresca LPs of the non-associative iteration (0: associative LP only, or its state
+        was already a fixed point).
     """
 
     ap_min: float
@@ -65,6 +79,8 @@ class Collapse:
     tangential_force: np.ndarray
     p: float
     delta: float
+    converged: bool = True
+    iterations: int = 0
 
     @property
     def moving(self) -> np.ndarray:
@@ -178,8 +194,9 @@ def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, floa
 
 
 def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=None, *,
-                   g: float = G, direction: int | None = None, names=None) -> Collapse:
-    """The collapse of an assembly under a horizontal ground acceleration (Eqs. 10.2–10.4).
+                   g: float = G, direction: int | None = None, names=None,
+                   friction: str = "nonassociative") -> Collapse:
+    """The collapse of an assembly under a horizontal ground acceleration (Eqs. 10.2–10.9).
 
     Parameters
     ----------
@@ -198,18 +215,25 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
         Direction of the ground acceleration; None: the smaller of both.
     names : list of str, optional
         Block names for the error message of a structure that cannot stand.
+    friction : "nonassociative" or "associative"
+        Coulomb friction without dilatancy (the iteration of Eqs. 10.6–10.8 and the
+        macro-blocks of Eq. 10.9, default) or the friction cone as yield surface (the single
+        LP of Eq. 10.4).
 
     Raises
     ------
     ValueError
         If the assembly cannot stand under gravity alone (naming the block).
     """
+    if friction not in ("nonassociative", "associative"):
+        raise ValueError(f"friction must be 'nonassociative' or 'associative', got {friction!r}")
     mass = np.asarray(mass, float)
     nb_, nj = len(mass), len(normal)
     mu = np.full(nj, np.inf) if mu is None else np.asarray(mu, float)
     if direction is None:
         both = [limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu,
-                               g=g, direction=d, names=names) for d in (1, -1)]
+                               g=g, direction=d, names=names, friction=friction)
+                for d in (1, -1)]
         return min(both, key=lambda c: c.lambda_)
     a_ub, b_ub = _friction(mu)
     a_eq, b_eq = _equilibrium(mass, np.asarray(centroid, float), np.asarray(corners, float),
@@ -227,23 +251,50 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
         raise ValueError(f"the structure cannot stand under gravity: {why}")
     if res.status != 0:
         raise ValueError(f"the collapse LP failed: {res.message}")
-    lam = float(res.x[-1])
-    vel, opening, slide = _mechanism(res.eqlin.marginals, mass, np.asarray(inertia, float),
-                                     np.asarray(centroid, float), np.asarray(corners, float),
-                                     np.asarray(normal, float), body_a, body_b, direction)
+    geom = (mass, np.asarray(inertia, float), np.asarray(centroid, float),
+            np.asarray(corners, float), np.asarray(normal, float), body_a, body_b, direction)
+    state = na.Iterate(float(res.x[-1]), res.x, np.asarray(res.eqlin.marginals))
+    converged, iterations = True, 0
+    if friction == "nonassociative":
+        out = na.iterate(a_eq, b_eq, mu, state, float(mass.sum()),
+                         lambda duals: _mechanism(duals, *geom)[2], LAMBDA_CAP)
+        if out.iterations == 0:  # not even the first capacities (10.6) carry gravity
+            raise ValueError("the structure cannot stand under gravity: it hangs on shear "
+                             "at joints without normal force (non-associative friction, "
+                             "docs/theory.md §10)")
+        if not (out.converged and out.iterations == 1):  # else: LP state is a fixed point
+            state, converged, iterations = out.state, out.converged, out.iterations
+        size = float(np.ptp(geom[3].reshape(-1, 2), axis=0).max())
+        wedge = mb.lowest(geom[2:7], mass, direction, lambda zero: mb.solve_zeroed(
+            cost, ub[0], ub[1], a_eq, b_eq, bounds, zero), state.lambda_, size)
+        if wedge is not None:  # a macro-block solution below the iteration's (Eq. 10.9)
+            state, converged = wedge, True
+        elif not converged:
+            na.warn_unconverged(out, direction)
+    return _collapse(state, geom, g, converged, iterations)
+
+
+def _collapse(state, geom, g: float, converged: bool, iterations: int) -> Collapse:
+    """The :class:`Collapse` of one solved LP state (forces, λ, duals)."""
+    mass, inertia, direction, nj = geom[0], geom[1], geom[-1], len(geom[4])
+    lam = state.lambda_
+    vel, opening, slide = _mechanism(state.duals, *geom)
     if lam >= LAMBDA_CAP * (1 - 1e-9):
         lam = math.inf
-    p, delta = equivalent_block(mass, np.asarray(inertia, float), vel, g)
+    p, delta = equivalent_block(mass, inertia, vel, g)
+    x = state.x
     return Collapse(ap_min=lam * g, lambda_=lam, direction=direction, velocity=vel,
-                    opening=opening, sliding=slide,
-                    normal_force=res.x[:2 * nj].reshape(nj, 2),
-                    tangential_force=res.x[2 * nj:4 * nj].reshape(nj, 2), p=p, delta=delta)
+                    opening=opening, sliding=slide, normal_force=x[:2 * nj].reshape(nj, 2),
+                    tangential_force=x[2 * nj:4 * nj].reshape(nj, 2), p=p, delta=delta,
+                    converged=converged, iterations=iterations)
 
 
-def collapse(assembly, *, mu=None, direction: int | None = None) -> Collapse:
-    """:func:`limit_analysis` of an :class:`~rockarch.mdof.assembly.Assembly` (its own
-    friction coefficients unless ``mu`` is given)."""
+def collapse(assembly, *, mu=None, direction: int | None = None,
+             friction: str = "nonassociative") -> Collapse:
+    """:func:`limit_analysis` (Eqs. 10.4–10.9) of an
+    :class:`~rockarch.mdof.assembly.Assembly` (its own friction coefficients unless ``mu``
+    is given)."""
     a = assembly
     return limit_analysis(a.mass, a.inertia, a.centroid, a.corners, a.normal, a.body_a,
                           a.body_b, a.mu if mu is None else mu, g=a.g, direction=direction,
-                          names=a.info.get("block_names"))
+                          names=a.info.get("block_names"), friction=friction)

@@ -1,0 +1,53 @@
+"""Benchmark of the statics of general assemblies: associative LP (Eq. 10.4 of
+docs/theory.md) against the non-associative analysis (Eqs. 10.6-10.9), per structure.
+
+Usage::
+
+    .venv/bin/python benchmarks/assembly_statics.py
+
+Prints the load average, then per structure the median wall time (3 runs) of
+``mdof.collapse(a, friction="associative")`` (the plain reference) and of
+``mdof.collapse(a)`` (both directions each), with the ap_min of both.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import time
+
+from rockarch import mdof
+from rockarch.arch import catenary
+from rockarch.mdof import builders as bd
+
+
+def median_time(fn, repeat: int = 3) -> tuple[float, object]:
+    out = fn()
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), out
+
+
+def main() -> None:
+    print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
+    cases = {
+        "block against a support, mu 0.5": bd.from_polygons(
+            [[[0, 0], [0.4, 0], [0.4, 1], [0, 1]]],
+            supports=[[[0.4, 0], [1.4, 0], [1.4, 2], [0.4, 2]]], mu=0.5),
+        "arch N=10 on 3 x 1.5 m piers": bd.bridge(catenary(10.0, 3.0, 0.25), 10,
+                                                   pier_height=3.0, pier_width=1.5),
+        "wall 4 x 3, no sliding": bd.wall(4, 3, 0.4, 0.2),
+        "wall 4 x 10, no sliding": bd.wall(4, 10, 0.4, 0.2),
+    }
+    for name, a in cases.items():
+        t_a, ca = median_time(lambda a=a: mdof.collapse(a, friction="associative"))
+        t_n, cn = median_time(lambda a=a: mdof.collapse(a))
+        print(f"{name:34s} associative {t_a * 1e3:8.1f} ms ({ca.ap_min / a.g:.4f} g)   "
+              f"non-associative {t_n * 1e3:8.1f} ms ({cn.ap_min / a.g:.4f} g)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,98 @@
+"""Macro-block mechanisms: one rigid cluster of blocks rocking about one corner, every joint
+around it unloaded (docs/theory.md §10, Eq. 10.9).
+
+Non-associative limit analysis can have several solutions, and the iteration of
+:mod:`rockarch.mdof.nonassoc` finds one. A cluster S of blocks rotating rigidly about a
+corner P, with every other joint on its boundary opening (and free to slide: it carries
+nothing), is another solution wherever the rest of the structure can stand: S's moment
+balance about P fixes λ_S, and the LP of Eq. (10.4) with S's boundary forces set to zero
+(except at P) confirms a Coulomb-admissible force field. These are the crack patterns of
+the kinematic (macro-element) approach to masonry, e.g. the stepped corner wedge of a
+running-bond wall. :func:`lowest` returns the least confirmed one below a given λ.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import linprog
+
+from rockarch.mdof.nonassoc import Iterate
+
+
+def _closure(start: int, pivot, omega: float, kin, tol: float):
+    """The blocks that must rotate with ``start`` about ``pivot`` (rate ω) so that no
+    boundary corner penetrates; None if a fixed support is in the way."""
+    centroid, corners, normal, body_a, body_b = kin
+    nb_ = len(centroid)
+    ins = np.zeros(nb_ + 1, dtype=bool)  # index nb_ (= -1): the ground, never moves
+    ins[start] = True
+    while True:
+        ia, ib = ins[body_a], ins[body_b]
+        bnd = ia ^ ib
+        r = corners[bnd] - pivot  # (m, 2, 2)
+        vel = omega * np.stack([-r[..., 1], r[..., 0]], axis=-1)
+        dn = np.einsum("mcd,md->mc", vel, normal[bnd])
+        dn = np.where(ib[bnd][:, None], dn, -dn)  # relative velocity of b w.r.t. a
+        bad = (dn < -tol).any(axis=1)
+        if not bad.any():
+            return ins[:nb_]
+        other = np.where(ib[bnd][bad], body_a[bnd][bad], body_b[bnd][bad])
+        if (other < 0).any():
+            return None
+        ins[other] = True
+
+
+def lowest(kin, mass, direction: int, lp, below: float, size: float):
+    """The least macro-block solution with λ < ``below`` (Eq. 10.9), or None.
+
+    ``kin`` = (centroid, corners, normal, body_a, body_b); ``lp(zero)`` solves Eq. (10.4)
+    with the corner forces of the (nj, 2) mask ``zero`` set to 0 and returns scipy's result.
+    Returns an :class:`Iterate` whose ``duals`` are the cluster's rigid rotation.
+    """
+    centroid, corners, normal, body_a, body_b = kin
+    nj, tol = len(normal), 1e-9 * size
+    seen, cands = set(), []
+    for k in range(nj):
+        for c in range(2):
+            pivot = corners[k, c]
+            for start in (body_a[k], body_b[k]):
+                for omega in (1.0, -1.0):
+                    if start < 0:
+                        continue
+                    s = _closure(int(start), pivot, omega, kin, tol)
+                    if s is None or s.all():
+                        continue
+                    key = (s.tobytes(), k, c, omega)
+                    if key in seen:
+                        continue
+                    seen.add(key)
+                    r = centroid[s] - pivot
+                    m_in = direction * float(np.sum(mass[s] * r[:, 1]))
+                    if omega * m_in <= 0:  # inertia must drive the rotation
+                        continue
+                    lam = float(np.sum(mass[s] * r[:, 0])) / m_in
+                    if 0 <= lam < below * (1 - 1e-9):
+                        cands.append((lam, s, k, c, omega))
+    for lam, s, k, c, omega in sorted(cands, key=lambda t: t[0]):
+        zero = np.repeat((np.append(s, False)[body_a] ^ np.append(s, False)[body_b])[:, None],
+                         2, axis=1)
+        zero[k, c] = False
+        res = lp(zero)
+        if res.status != 0 or abs(res.x[-1] - lam) > 1e-6 * max(1.0, lam):
+            continue
+        r = centroid - corners[k, c]
+        vel = np.where(s[:, None], omega * np.stack([-r[:, 1], r[:, 0], np.ones(len(s))],
+                                                    axis=1), 0.0)
+        return Iterate(float(res.x[-1]), res.x, vel.reshape(-1))
+    return None
+
+
+def solve_zeroed(cost, a_ub, b_ub, a_eq, b_eq, bounds, zero):
+    """Eq. (10.4) with the corner forces (N and T) flagged in ``zero`` fixed at 0."""
+    nj = zero.shape[0]
+    bnd = list(bounds)
+    for i in np.flatnonzero(zero.reshape(-1)):
+        bnd[i] = (0.0, 0.0)
+        bnd[2 * nj + i] = (0.0, 0.0)
+    return linprog(cost, A_ub=a_ub, b_ub=b_ub, A_eq=a_eq, b_eq=b_eq, bounds=bnd,
+                   method="highs")

@@ -1,0 +1,83 @@
+"""Non-associative friction in the limit analysis (docs/theory.md §10, Eqs. 10.6-10.8):
+where nothing slides the associative LP is returned unchanged, the converged state is
+Coulomb-admissible, and a non-converged iteration warns and returns the safer value."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rockarch import mdof
+from rockarch.arch import catenary
+from rockarch.constants import G
+from rockarch.mdof import builders as bd
+from rockarch.mdof import nonassoc, statics
+
+# HiGHS solves to ~1e-9 relative (primal/dual feasibility 1e-7 on forces of order 1).
+LP_TOL = 1e-7
+
+
+@pytest.mark.parametrize("make", [
+    lambda: bd.bridge(catenary(10.0, 3.0, 0.25), 10, pier_height=3.0, pier_width=1.5),
+    lambda: bd.bridge(catenary(10.0, 3.0, 0.25), 10, pier_height=3.0, pier_width=1.5, mu=0.5),
+    lambda: bd.with_friction(mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 10), 0.5),
+    lambda: bd.colonnade(2, 0.3, 2.0, 1.0, 0.4),
+])
+def test_nothing_slides_gives_the_associative_state_bit_for_bit(make):
+    # the associative state is a fixed point of (10.6)-(10.8): returned as it is
+    a = make()
+    c, ca = statics.collapse(a), statics.collapse(a, friction="associative")
+    assert c.iterations == 0 and c.converged
+    assert c.ap_min == ca.ap_min and np.array_equal(c.normal_force, ca.normal_force)
+    assert np.array_equal(c.velocity, ca.velocity)
+
+
+def test_converged_state_is_coulomb_admissible_and_slides_without_dilatancy():
+    r = [[0, 0], [0.4, 0], [0.4, 1.0], [0, 1.0]]
+    a = bd.from_polygons([r], supports=[[[0.4, 0], [1.4, 0], [1.4, 2], [0.4, 2]]], mu=0.5)
+    c = statics.collapse(a)
+    assert c.converged and c.iterations > 1
+    # |T| <= mu N at every corner (to the iteration's force tolerance 1e-7 of the weight)
+    tol = 1e-6 * float(a.mass.sum())
+    assert np.all(np.abs(c.tangential_force) <= 0.5 * c.normal_force + tol)
+    # the support joint slides and opens; B/H = 0.4 g (closed form)
+    k = int(np.flatnonzero(np.abs(a.normal[:, 0]) > 0.5)[0])  # the vertical face
+    assert c.sliding[k] and c.opening[k].any()
+    assert c.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)
+
+
+def test_no_convergence_warns_and_returns_the_smallest_iterate(monkeypatch):
+    w = bd.wall(4, 3, 0.4, 0.2)  # converges in ~22 LPs per direction
+    monkeypatch.setattr(nonassoc, "MAX_ITER", 2)
+    with pytest.warns(RuntimeWarning, match="did not converge after 2 LPs"):
+        c = statics.collapse(w, direction=1)
+    assert not c.converged and c.iterations == 2
+    # the safer value: not above the associative LP's, and the least of the iterates
+    assert c.lambda_ <= statics.collapse(w, direction=1, friction="associative").lambda_
+    assert c.lambda_ < 1.0  # the first Tresca LP: capacities of the associative state
+
+
+def test_mu_infinite_caps():
+    # mu = inf: unbounded while compressed, nothing once open (Eq. 10.6)
+    n = np.array([[1.0, 0.0], [1e-12, 2.0]])
+    cap = nonassoc.shear_caps(np.array([math.inf, 0.5]), n, 1.0)
+    assert cap[0, 0] == math.inf and cap[0, 1] == 0.0
+    assert cap[1].tolist() == [0.5e-12, 1.0]
+
+
+def test_friction_option_is_checked():
+    with pytest.raises(ValueError, match="friction must be"):
+        statics.collapse(mdof.single_block(0.5, 1.0), friction="dilatant")
+
+
+def test_macro_block_wedge_of_the_long_wall():
+    # the same stepped end wedge in a 4 x 10 wall: 7/11 g (closed form, see
+    # test_assemblies); its boundary joints carry nothing but the pivot corner
+    w = bd.wall(4, 10, 0.4, 0.2)
+    c = statics.collapse(w)
+    assert c.ap_min == pytest.approx(G * 7 / 11, rel=LP_TOL)
+    s = np.append(c.moving, False)
+    boundary = s[w.body_a] ^ s[w.body_b]
+    loaded = np.abs(c.normal_force[boundary]) > 1e-9 * float(w.mass.sum())
+    assert c.moving.sum() == 4 and loaded.sum() == 1  # one corner: the pivot
+
