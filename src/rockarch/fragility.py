@@ -14,8 +14,9 @@ Sect. 11.3):
 - the collapse intensities are fitted by a lognormal distribution by maximum likelihood,
   censored records included (Eq. (11.31)), with a bootstrap confidence band over records.
 
-The simulations run as chunks of records on the sweep executor (in-process, local
-processes or Dask) and may be kept in the resumable store (:mod:`rockarch.sweep`).
+Every record is one task of the sweep executor (in-process, local processes or Dask): its
+whole scan and bisection, with no barrier between records; each finished record may be
+kept in the resumable store under its own key (:mod:`rockarch.sweep`).
 """
 
 from __future__ import annotations
@@ -43,48 +44,67 @@ N_BOOTSTRAP = 500
 # --------------------------------------------------------------------------- the scan
 
 
-class Records(tuple):
-    """The motions of a suite as one sweep input (identified by their samples' hashes)."""
+class _Bar:
+    """A progress bar that advances by one per finished task (sweep.run_chunks counts
+    the simulations of a task) or, with None, shows nothing (a record's own bisection)."""
 
-    def fingerprint(self) -> str:
-        import hashlib
+    n = total = 0
 
-        h = hashlib.sha256()
-        for m in self:
-            h.update(m.fingerprint().encode())
-        return h.hexdigest()
+    def __init__(self, bar=None) -> None:
+        self.bar = bar
+
+    def update(self, n: int = 1) -> None:
+        if self.bar is not None:
+            self.bar.update(1)
+
+    def refresh(self) -> None:
+        pass
 
 
 @dataclass(frozen=True)
-class SuiteScan:
-    """A structure at a fixed p over the records of a suite, as a sweep "system".
+class RecordScan:
+    """The whole IDA of one record (scan and bisection) as one sweep task.
 
-    ``run(records, rows, ratio)`` runs record ``int(rows[i])`` at ratio ``ratio[i]``: the
-    rows of the OAS machinery (:mod:`rockarch.spectra`) become records, its columns the
-    scale. Each simulation is the system's own ``run`` on that record, so results are
-    identical to an OAS of the record at this p.
+    ``run(records, rows, ratio)``: ``rows`` holds one record index k (every entry),
+    ``ratio`` the scan grid followed by one NaN. Record k runs at every grid value (one
+    ``system.run`` call: numba threads in this process), then its collapse point is
+    bisected between the last safe grid value below the first collapse and that collapse,
+    by the code of the OAS boundary (:func:`rockarch.spectra._refine_boundary`), so the
+    collapse point is that of an OAS of the record at this p, bit for bit. Returns the
+    grid's verdicts and responses, and in the last slot whether the record collapses and
+    its collapse ratio (NaN: censored). A task holds no barrier: the records of a suite
+    run side by side on the executor's workers, each at its own pace.
     """
 
     system: object
     p: float
+    tol: float
 
     @property
     def name(self) -> str:
         return f"IDA {self.system.name} p={self.p:g}"
 
     def run(self, records: Sequence[GroundMotion], rows, ratio):
-        rows, ratio = np.broadcast_arrays(np.asarray(rows, dtype=float),
-                                          np.asarray(ratio, dtype=float))
-        over = np.zeros(rows.shape, dtype=bool)
-        resp = np.zeros(rows.shape)
-        for k in np.unique(rows).astype(int):
-            sel = rows == k
-            o, r = self.system.run(records[k], np.full(int(sel.sum()), self.p), ratio[sel])
-            over[sel], resp[sel] = o, r
-        return over, resp
+        rows = np.ravel(np.asarray(rows, dtype=float))
+        ks = np.unique(rows)
+        if ks.size != 1:
+            raise ValueError("a record scan runs one record")
+        motion = records[int(ks[0])]
+        grid = np.ravel(np.asarray(ratio, dtype=float))[:-1]
+        over, resp = self.system.run(motion, np.full(grid.size, self.p), grid)
+        over = np.asarray(over, dtype=bool)
+
+        def run(tasks):
+            return [self.system.run(motion, np.full(np.size(r), self.p), np.ravel(r))
+                    for _, r in tasks]
+
+        collapse = _refine_boundary(run, np.array([self.p]), grid, over[None], self.tol,
+                                    _Bar(), 1)[0]
+        return (np.append(over, bool(np.isfinite(collapse))),
+                np.append(np.asarray(resp, dtype=float), collapse))
 
     def attrs(self) -> dict:
-        return {"p": self.p, **self.system.attrs()}
+        return {"p": self.p, "tol": self.tol, **self.system.attrs()}
 
 
 def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) -> float:
@@ -173,9 +193,12 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     im, period : intensity measure (:data:`IMS`; ``sa`` at ``period`` [s]).
     ratio : scan grid of ap/ap,min (default that of ``rockarch oas``: 1 … 5, 81 values);
         its last value is the scan limit (censoring).
-    tol, chunks, progress, executor, store : as in :func:`rockarch.spectra.compute_oas`.
+    tol, progress, executor, store : as in :func:`rockarch.spectra.compute_oas`; every
+        record is one task (:class:`RecordScan`), run in this process, on local processes
+        or on Dask, and stored as it finishes (the progress bar counts records).
+    chunks : unused (records are the tasks); kept for callers of earlier versions.
     """
-    motions = Records(motions)
+    motions = tuple(motions)
     if not motions:
         raise ValueError("an IDA needs at least one record")
     p = float(p)
@@ -192,44 +215,29 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     if len(names) != len(motions):
         raise ValueError("give one name per record")
     scale = np.array([im_per_unit_pga(m, im, period) for m in motions])
-    scan = SuiteScan(system, p)
-    rows = np.arange(len(motions), dtype=float)
-    parts = np.array_split(np.arange(rows.size), min(max(chunks, 1), rows.size))
+    scan = RecordScan(system, p, tol)
+    task_ratio = np.append(ratio, np.nan)
+    # one task per record, the longest records first (they finish last otherwise); each
+    # record is stored under its own key as it finishes (resumable, and reused by any
+    # suite that holds the record)
+    order = sorted(range(len(motions)), key=lambda k: -motions[k].duration)
+    tasks = [(np.full(task_ratio.size, float(k)), task_ratio) for k in order]
     store = sweep.as_store(store)
+    keys = None if store is None else [
+        sweep.chunk_key(scan, motions[k], np.array([p]), task_ratio) for k in order]
     executor, owned = sweep.as_executor(executor)
-    over = np.zeros((rows.size, ratio.size), dtype=bool)
-
-    def run(tasks):
-        return sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
-                                bar=bar)
-
-    # chunks of a bisection round: two per worker of an executor (every chunk carries the
-    # suite's records to its worker), one in this process
-    n_round = 1 if executor is None else min(2 * executor.n_workers, len(parts))
-
-    def run_round(tasks):
-        """A bisection round (one simulation per record) in ``n_round`` chunks, so that the
-        records of a round run in parallel on an executor (the OAS code groups at least 16
-        cheap simulations a chunk, which leaves a few records in one chunk)."""
-        flat_rows = np.concatenate([np.ravel(t[0]) for t in tasks])
-        flat_ratio = np.concatenate([np.ravel(t[1]) for t in tasks])
-        pieces = np.array_split(np.arange(flat_rows.size), min(n_round, flat_rows.size))
-        res = run([(flat_rows[k], flat_ratio[k]) for k in pieces])
-        o = np.concatenate([np.ravel(r[0]) for r in res])
-        m = np.concatenate([np.ravel(r[1]) for r in res])
-        bounds = np.cumsum([0] + [np.size(t[0]) for t in tasks])
-        return [(o[a:b], m[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
-
+    over = np.zeros((len(motions), ratio.size), dtype=bool)
+    collapse = np.full(len(motions), np.nan)
     try:
-        with tqdm(total=over.size, desc=scan.name, unit="sim", disable=not progress,
-                  leave=False) as bar:
-            grid = [np.meshgrid(rows[idx], ratio, indexing="ij") for idx in parts]
-            for idx, (o, _) in zip(parts, run(grid), strict=True):
-                over[idx] = o
-            collapse = _refine_boundary(run_round, rows, ratio, over, tol, bar, len(parts))
+        with tqdm(total=len(motions), desc=scan.name, unit="record",
+                  disable=not progress, leave=False) as bar:
+            res = sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
+                                   bar=_Bar(bar), keys=keys)
     finally:
         if owned:
             executor.close()
+    for k, (o, r) in zip(order, res, strict=True):
+        over[k], collapse[k] = o[:-1], r[-1]
     return IDAResult(system=system.name, p=p, ap_min=float(system.ap_min), im=im,
                      records=names, ratio=ratio, overturned=over, ratio_collapse=collapse,
                      im_scale=scale, resurrections=count_resurrections(over), tol=tol,
