@@ -31,7 +31,8 @@ from tqdm.auto import tqdm
 from rockarch import sweep
 from rockarch.constants import OAS_TOL
 from rockarch.motion import GroundMotion
-from rockarch.spectra import _grid, _refine_boundary
+from rockarch.record_scan import RecordScan, TaskBar, check_island_step
+from rockarch.spectra import _grid
 
 #: Intensity measures of the IDA (the x axis of the fragility curve).
 IMS = ("pga", "pgv", "sa")
@@ -42,69 +43,6 @@ N_BOOTSTRAP = 500
 
 
 # --------------------------------------------------------------------------- the scan
-
-
-class _Bar:
-    """A progress bar that advances by one per finished task (sweep.run_chunks counts
-    the simulations of a task) or, with None, shows nothing (a record's own bisection)."""
-
-    n = total = 0
-
-    def __init__(self, bar=None) -> None:
-        self.bar = bar
-
-    def update(self, n: int = 1) -> None:
-        if self.bar is not None:
-            self.bar.update(1)
-
-    def refresh(self) -> None:
-        pass
-
-
-@dataclass(frozen=True)
-class RecordScan:
-    """The whole IDA of one record (scan and bisection) as one sweep task.
-
-    ``run(records, rows, ratio)``: ``rows`` holds one record index k (every entry),
-    ``ratio`` the scan grid followed by one NaN. Record k runs at every grid value (one
-    ``system.run`` call: numba threads in this process), then its collapse point is
-    bisected between the last safe grid value below the first collapse and that collapse,
-    by the code of the OAS boundary (:func:`rockarch.spectra._refine_boundary`), so the
-    collapse point is that of an OAS of the record at this p, bit for bit. Returns the
-    grid's verdicts and responses, and in the last slot whether the record collapses and
-    its collapse ratio (NaN: censored). A task holds no barrier: the records of a suite
-    run side by side on the executor's workers, each at its own pace.
-    """
-
-    system: object
-    p: float
-    tol: float
-
-    @property
-    def name(self) -> str:
-        return f"IDA {self.system.name} p={self.p:g}"
-
-    def run(self, records: Sequence[GroundMotion], rows, ratio):
-        rows = np.ravel(np.asarray(rows, dtype=float))
-        ks = np.unique(rows)
-        if ks.size != 1:
-            raise ValueError("a record scan runs one record")
-        motion = records[int(ks[0])]
-        grid = np.ravel(np.asarray(ratio, dtype=float))[:-1]
-        over, resp = self.system.run(motion, np.full(grid.size, self.p), grid)
-        over = np.asarray(over, dtype=bool)
-
-        def run(tasks):
-            return [self.system.run(motion, np.full(np.size(r), self.p), np.ravel(r))
-                    for _, r in tasks]
-
-        collapse = _refine_boundary(run, np.array([self.p]), grid, over[None], self.tol,
-                                    _Bar(), 1)[0]
-        return (np.append(over, bool(np.isfinite(collapse))),
-                np.append(np.asarray(resp, dtype=float), collapse))
-
-    def attrs(self) -> dict:
-        return {"p": self.p, "tol": self.tol, **self.system.attrs()}
 
 
 def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) -> float:
@@ -140,6 +78,9 @@ class IDAResult:
     im_scale : the IM of each record scaled to ratio 1, i.e. to PGA = ap,min (IM units).
     resurrections : per record, safe islands above its first collapse on the grid.
     tol : bisection tolerance (ratio units).
+    island_step : 1, every grid value run; s > 1, the adaptive scan of
+        :class:`RecordScan` (``overturned`` is True where a value was not run).
+    evaluated : (record, ratio) bool, the values run (None: every one).
     """
 
     system: str
@@ -154,6 +95,8 @@ class IDAResult:
     resurrections: np.ndarray
     tol: float
     period: float | None = None
+    island_step: int = 1
+    evaluated: np.ndarray | None = None
 
     @property
     def censored(self) -> np.ndarray:
@@ -181,7 +124,8 @@ def count_resurrections(over: np.ndarray) -> np.ndarray:
 
 def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         im: str = "pga", period: float | None = None, ratio=None, tol: float = OAS_TOL,
-        chunks: int = 32, progress: bool = False, executor=None, store=None) -> IDAResult:
+        chunks: int = 32, progress: bool = False, executor=None, store=None,
+        island_step: int = 1) -> IDAResult:
     """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
 
     Parameters
@@ -197,6 +141,9 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         record is one task (:class:`RecordScan`), run in this process, on local processes
         or on Dask, and stored as it finishes (the progress bar counts records).
     chunks : unused (records are the tasks); kept for callers of earlier versions.
+    island_step : 1 (default) runs every grid value; s > 1 the adaptive scan of
+        :class:`RecordScan`: the same collapse points, safe islands above the first
+        collapse found from every s-th grid value, fewer simulations.
     """
     motions = tuple(motions)
     if not motions:
@@ -215,7 +162,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     if len(names) != len(motions):
         raise ValueError("give one name per record")
     scale = np.array([im_per_unit_pga(m, im, period) for m in motions])
-    scan = RecordScan(system, p, tol)
+    scan = RecordScan(system, p, tol, check_island_step(island_step))
     task_ratio = np.append(ratio, np.nan)
     # one task per record, the longest records first (they finish last otherwise); each
     # record is stored under its own key as it finishes (resumable, and reused by any
@@ -227,21 +174,22 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         sweep.chunk_key(scan, motions[k], np.array([p]), task_ratio) for k in order]
     executor, owned = sweep.as_executor(executor)
     over = np.zeros((len(motions), ratio.size), dtype=bool)
+    evaluated = np.zeros_like(over)
     collapse = np.full(len(motions), np.nan)
     try:
         with tqdm(total=len(motions), desc=scan.name, unit="record",
                   disable=not progress, leave=False) as bar:
             res = sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
-                                   bar=_Bar(bar), keys=keys)
+                                   bar=TaskBar(bar), keys=keys)
     finally:
         if owned:
             executor.close()
     for k, (o, r) in zip(order, res, strict=True):
-        over[k], collapse[k] = o[:-1], r[-1]
+        over[k], evaluated[k], collapse[k] = o[:-1], ~np.isnan(r[:-1]), r[-1]
     return IDAResult(system=system.name, p=p, ap_min=float(system.ap_min), im=im,
                      records=names, ratio=ratio, overturned=over, ratio_collapse=collapse,
                      im_scale=scale, resurrections=count_resurrections(over), tol=tol,
-                     period=period)
+                     period=period, island_step=scan.island_step, evaluated=evaluated)
 
 
 # --------------------------------------------------------------------------- the fit
@@ -418,6 +366,8 @@ class Fragility:
                "ci": self.ci}
         if r.period is not None:
             out["period"] = r.period
+        if r.island_step > 1:
+            out["island_step"] = r.island_step
         return out
 
 
