@@ -5,21 +5,23 @@ Run:  .venv/bin/python benchmarks/fragility_mdof.py [--records 50] [--repeat 1]
           [--variants dask1,dask2,proc2,inproc]
 
 A circular arch (f/l = 0.5, d/l = 0.15, span 1 m scaled to its own p) over the first
-``--records`` records of rockarch.synthetic.synthetic_motions(50, seed=``--seed``) (seed 1:
-15-97 s, mean 39.5 s), scanned over ``--ratio-steps`` values of ap/ap,min from 1 to 5 with
-bisection to ``--tol``. Every record is one task (its scan and bisection). Variants:
-a Dask LocalCluster of 1 and of 2 single-threaded workers, 2 local processes, and the plain
-in-process run (numba threads, no executor) as the reference. Every executor is started and
-its workers' kernels loaded before timing (start-up printed apart); the variants are
-interleaved, ``--repeat`` rounds, best wall time kept. For each run the CPU seconds of
-every worker process, of this process, and of the whole machine (other jobs included) are
-read from /proc, so that a speed-up lost to other jobs on the cores shows as such. Every
-run's collapse points are checked to be identical.
+``--records`` records of rockarch.synthetic.synthetic_motions(50, seed=``--seed``) (seed
+1: 15-97 s, mean 39.5 s), scanned over ``--ratio-steps`` values of ap/ap,min from 1 to 5
+with bisection to ``--tol`` (``--island-step K``: the adaptive scan). Every record is one
+task (its scan and bisection). Variants: a Dask LocalCluster of 1 and of 2 single-threaded
+workers, 2 local processes, and the plain in-process run (numba threads, no executor) as
+the reference. Every executor is started and its workers' kernels loaded before timing
+(start-up printed apart); the variants are interleaved, ``--repeat`` rounds, best wall
+time kept. For each run the CPU seconds of every worker process, of this process, and of
+the whole machine (other jobs included) are read from /proc, so that a speed-up lost to
+other jobs on the cores shows as such. Every run's collapse points are checked to be
+identical.
 """
 
 from __future__ import annotations
 
 import argparse
+import logging
 import os
 import time
 
@@ -61,14 +63,15 @@ def _busy(c) -> float:
                                                                 "steal"))
 
 
-def timed(ex, pids, system, motions, p, ratio, tol):
+def timed(ex, pids, system, motions, p, ratio, tol, island_step):
     """One run: (wall, [CPU s per worker], CPU s here, CPU s of the machine, result)."""
     procs = [psutil.Process(q) for q in pids]
     me = psutil.Process()
     w0 = [_busy(q.cpu_times()) for q in procs]
     m0, s0 = _busy(me.cpu_times()), _busy(psutil.cpu_times())
     t0 = time.perf_counter()
-    res = fr.ida(system, motions, p, ratio=ratio, tol=tol, executor=ex)
+    res = fr.ida(system, motions, p, ratio=ratio, tol=tol, executor=ex,
+                 island_step=island_step)
     wall = time.perf_counter() - t0
     w = [_busy(q.cpu_times()) - a for q, a in zip(procs, w0, strict=True)]
     return (wall, w, _busy(me.cpu_times()) - m0, _busy(psutil.cpu_times()) - s0, res)
@@ -85,9 +88,14 @@ def main() -> None:
     ap.add_argument("--blocks", type=int, default=20)
     ap.add_argument("--ratio-steps", type=int, default=17)
     ap.add_argument("--tol", type=float, default=0.01)
+    ap.add_argument("--island-step", type=int, default=1,
+                    help="1: every ratio; K > 1: the adaptive scan (fragility.ida)")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--variants", default="dask1,dask2,proc2,inproc")
     args = ap.parse_args()
+    # several LocalClusters in one process: the first to close would restore distributed's
+    # INFO logging while the others still run (silence_logs is per cluster)
+    logging.getLogger("distributed").setLevel(logging.ERROR)
     variants = args.variants.split(",")
     motions = synthetic_motions(50, seed=args.seed)[:args.records]
     sys_ = ra.system("mdof", shape="circular", rise_over_span=0.5, thickness_over_span=0.15,
@@ -97,7 +105,8 @@ def main() -> None:
     dur = np.array([m.duration for m in motions])
     print(f"{sys_.name} at its p = {p:.3f} 1/s; {len(motions)} synthetic records (seed "
           f"{args.seed}), {dur.min():.0f}-{dur.max():.0f} s, mean {dur.mean():.1f} s; "
-          f"{ratio.size} ratios + bisection to {args.tol:g}; {os.cpu_count()} cores; "
+          f"{ratio.size} ratios (island step {args.island_step}) + bisection to "
+          f"{args.tol:g}; {os.cpu_count()} cores; "
           f"load average before: {os.getloadavg()[0]:.2f}")
     fr.ida(sys_, motions[:1], p, ratio=[1.0, 2.0], tol=0.5)  # compile / load numba caches
     started = {v: start(v, sys_, motions[0], p) for v in variants}
@@ -106,7 +115,7 @@ def main() -> None:
         for rnd in range(args.repeat):
             for v in variants:  # interleaved
                 ex, pids = started[v][:2]
-                run = timed(ex, pids, sys_, motions, p, ratio, args.tol)
+                run = timed(ex, pids, sys_, motions, p, ratio, args.tol, args.island_step)
                 print(f"  round {rnd + 1} {NAMES[v]:<24} {run[0]:7.1f} s wall, workers "
                       + " ".join(f"{c:.1f}" for c in run[1]) + f" CPU s, here {run[2]:.1f},"
                       f" machine {run[3]:.1f} of {2 * run[0]:.1f} CPU s; load "
