@@ -1,6 +1,7 @@
 """Fragility (docs/theory.md Sect. 11.3): IDA collapse points are OAS boundaries times
 ap,min; the censored lognormal MLE recovers known parameters; the bootstrap band."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -176,3 +177,113 @@ def test_likelihood_gradient_matches_finite_differences():
         num = approx_fprime(np.array(params), lambda q: fr._neg_loglik(q, lx, lc)[0], 1e-7)
         # forward differences of step 1e-7 on values ~1e2: error ~1e-5 relative
         assert grad == pytest.approx(num, rel=1e-4, abs=1e-4)
+
+
+# --------------------------------------------------------------------------- record tasks
+
+
+@dataclasses.dataclass(frozen=True)
+class _Pattern:
+    """A stand-in structure whose verdict is a fixed set of scan values (no simulation):
+    collapse at ``collapse`` (ratios), safe elsewhere; counts its runs in RUNS and fails
+    on any record named in FAIL (to interrupt an IDA)."""
+
+    collapse: tuple
+    name: str = "pattern"
+    ap_min: float = 1.0
+
+    def run(self, motion, p, ratio):
+        if motion.name in FAIL:
+            raise RuntimeError(f"interrupted at {motion.name}")
+        RUNS.append(np.size(ratio))
+        ratio = np.atleast_1d(ratio)
+        return np.isin(np.round(ratio, 9), np.round(self.collapse, 9)), ratio
+
+    def attrs(self) -> dict:
+        return {}
+
+
+RUNS: list = []
+FAIL: set = set()
+
+
+def _motion(name, seconds=2.0):
+    t = np.linspace(0.0, seconds, 11)
+    return ra.GroundMotion(t, np.sin(t), name)
+
+
+def test_adaptive_scan_finds_islands_from_every_kth_value():
+    # grid 1 … 5 step 0.25 (17 values); first collapse at 2.0; a safe island of two values
+    # (3.0, 3.25), one of one value (4.25) and the scan limit 5.0 safe
+    grid = RATIO
+    safe_above = {3.0, 3.25, 4.25, 5.0}
+    sys_ = _Pattern(tuple(r for r in grid if r >= 2.0 and r not in safe_above))
+    full = fr.ida(sys_, [_motion("a")], 1.0, ratio=grid, tol=0.0)
+    assert full.resurrections.tolist() == [3] and full.evaluated.all()
+    RUNS.clear()
+    res = fr.ida(sys_, [_motion("a")], 1.0, ratio=grid, tol=0.0, island_step=4)
+    assert res.ratio_collapse[0] == full.ratio_collapse[0] == 2.0
+    run = grid[res.evaluated[0]]
+    # every value up to the first collapse (a batch of numba threads may run a few more),
+    # every 4th above it (3.0, 4.0, 5.0), the neighbours of the safe ones until a collapse
+    # (2.75, 3.25, 3.5; 4.75); the one-value island 4.25 lies between 4.0 (collapse) and
+    # 4.75 (collapse) and is never run: missed, as documented
+    assert {1.0, 1.25, 1.5, 1.75, 2.0, 2.75, 3.0, 3.25, 3.5, 4.0, 4.75, 5.0} <= set(run)
+    assert 4.25 not in run and sum(RUNS) == res.evaluated.sum() < grid.size
+    assert res.resurrections.tolist() == [2]  # the islands (3.0, 3.25) and (5.0)
+    ev = res.evaluated[0]
+    assert np.array_equal(res.overturned[0][ev], full.overturned[0][ev])
+    assert res.overturned[0][~ev].all()  # values not run are taken as collapse
+
+
+def test_adaptive_scan_keeps_every_collapse_point(records):
+    sys_ = ra.system("block", alpha=0.2, t_free=3.0)
+    grid = np.round(np.linspace(1.0, 5.0, 41), 12)
+    full = fr.ida(sys_, records, 2.0, ratio=grid)
+    assert full.evaluated.all()
+    for step in (2, 5):
+        res = fr.ida(sys_, records, 2.0, ratio=grid, island_step=step)
+        # the same values up to the first collapse, the same bisection: bit-identical
+        assert np.array_equal(res.ratio_collapse, full.ratio_collapse)
+        ev = res.evaluated
+        assert np.array_equal(res.overturned[ev], full.overturned[ev])
+        assert np.all(res.resurrections <= full.resurrections)
+    with pytest.raises(ValueError, match="island step must be an integer >= 1"):
+        fr.ida(sys_, records, 2.0, ratio=grid, island_step=0)
+
+
+def test_each_record_is_stored_as_it_finishes_and_resumes(tmp_path):
+    from rockarch import sweep
+
+    sys_ = _Pattern(tuple(RATIO[RATIO >= 2.5]))
+    suite = [_motion("short", 1.0), _motion("long", 3.0), _motion("mid", 2.0)]
+    store = sweep.Store(tmp_path)
+    FAIL.add("short")  # longest first: "long" and "mid" finish, then "short" fails
+    try:
+        with pytest.raises(RuntimeError, match="interrupted at short"):
+            fr.ida(sys_, suite, 1.0, ratio=RATIO, tol=0.0, store=store)
+    finally:
+        FAIL.clear()
+    assert store.computed == 2
+    store = sweep.Store(tmp_path)
+    RUNS.clear()
+    res = fr.ida(sys_, suite, 1.0, ratio=RATIO, tol=0.0, store=store)
+    assert (store.reused, store.computed) == (2, 1)
+    assert res.ratio_collapse.tolist() == [2.5, 2.5, 2.5]
+    # a record's key holds the record, not the suite: another suite reuses it
+    store = sweep.Store(tmp_path)
+    fr.ida(sys_, [suite[2], _motion("new", 1.5)], 1.0, ratio=RATIO, tol=0.0, store=store)
+    assert (store.reused, store.computed) == (1, 1)
+
+
+def test_ida_on_worker_processes_is_bit_identical(records):
+    from rockarch import sweep
+
+    sys_ = ra.system("block", alpha=0.2, t_free=3.0)
+    ref = fr.ida(sys_, records, 2.0, ratio=RATIO)
+    with sweep.Executor("processes", workers=2) as ex:
+        for step in (1, 3):
+            res = fr.ida(sys_, records, 2.0, ratio=RATIO, executor=ex, island_step=step)
+            assert np.array_equal(res.ratio_collapse, ref.ratio_collapse)
+            ev = res.evaluated
+            assert np.array_equal(res.overturned[ev], ref.overturned[ev])

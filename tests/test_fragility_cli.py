@@ -77,6 +77,7 @@ def _check_contract(folder, tmp_path):
     (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa'"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
+    (["--island-step", "0"], "island step must be an integer >= 1"),
     (["--level", "95"], "--level must lie in (0, 1)"),
     (["--ratio-max", "0.5"], "--ratio-max must be > 1"),
     (["--p", "0"], "p must be a finite number > 0"),

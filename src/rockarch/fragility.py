@@ -14,8 +14,9 @@ Sect. 11.3):
 - the collapse intensities are fitted by a lognormal distribution by maximum likelihood,
   censored records included (Eq. (11.31)), with a bootstrap confidence band over records.
 
-The simulations run as chunks of records on the sweep executor (in-process, local
-processes or Dask) and may be kept in the resumable store (:mod:`rockarch.sweep`).
+Every record is one task of the sweep executor (in-process, local processes or Dask): its
+whole scan and bisection, with no barrier between records; each finished record may be
+kept in the resumable store under its own key (:mod:`rockarch.sweep`).
 """
 
 from __future__ import annotations
@@ -30,7 +31,8 @@ from tqdm.auto import tqdm
 from rockarch import sweep
 from rockarch.constants import OAS_TOL
 from rockarch.motion import GroundMotion
-from rockarch.spectra import _grid, _refine_boundary
+from rockarch.record_scan import RecordScan, TaskBar, check_island_step
+from rockarch.spectra import _grid
 
 #: Intensity measures of the IDA (the x axis of the fragility curve).
 IMS = ("pga", "pgv", "sa")
@@ -41,50 +43,6 @@ N_BOOTSTRAP = 500
 
 
 # --------------------------------------------------------------------------- the scan
-
-
-class Records(tuple):
-    """The motions of a suite as one sweep input (identified by their samples' hashes)."""
-
-    def fingerprint(self) -> str:
-        import hashlib
-
-        h = hashlib.sha256()
-        for m in self:
-            h.update(m.fingerprint().encode())
-        return h.hexdigest()
-
-
-@dataclass(frozen=True)
-class SuiteScan:
-    """A structure at a fixed p over the records of a suite, as a sweep "system".
-
-    ``run(records, rows, ratio)`` runs record ``int(rows[i])`` at ratio ``ratio[i]``: the
-    rows of the OAS machinery (:mod:`rockarch.spectra`) become records, its columns the
-    scale. Each simulation is the system's own ``run`` on that record, so results are
-    identical to an OAS of the record at this p.
-    """
-
-    system: object
-    p: float
-
-    @property
-    def name(self) -> str:
-        return f"IDA {self.system.name} p={self.p:g}"
-
-    def run(self, records: Sequence[GroundMotion], rows, ratio):
-        rows, ratio = np.broadcast_arrays(np.asarray(rows, dtype=float),
-                                          np.asarray(ratio, dtype=float))
-        over = np.zeros(rows.shape, dtype=bool)
-        resp = np.zeros(rows.shape)
-        for k in np.unique(rows).astype(int):
-            sel = rows == k
-            o, r = self.system.run(records[k], np.full(int(sel.sum()), self.p), ratio[sel])
-            over[sel], resp[sel] = o, r
-        return over, resp
-
-    def attrs(self) -> dict:
-        return {"p": self.p, **self.system.attrs()}
 
 
 def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) -> float:
@@ -120,6 +78,9 @@ class IDAResult:
     im_scale : the IM of each record scaled to ratio 1, i.e. to PGA = ap,min (IM units).
     resurrections : per record, safe islands above its first collapse on the grid.
     tol : bisection tolerance (ratio units).
+    island_step : 1, every grid value run; s > 1, the adaptive scan of
+        :class:`RecordScan` (``overturned`` is True where a value was not run).
+    evaluated : (record, ratio) bool, the values run (None: every one).
     """
 
     system: str
@@ -134,6 +95,8 @@ class IDAResult:
     resurrections: np.ndarray
     tol: float
     period: float | None = None
+    island_step: int = 1
+    evaluated: np.ndarray | None = None
 
     @property
     def censored(self) -> np.ndarray:
@@ -161,7 +124,8 @@ def count_resurrections(over: np.ndarray) -> np.ndarray:
 
 def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         im: str = "pga", period: float | None = None, ratio=None, tol: float = OAS_TOL,
-        chunks: int = 32, progress: bool = False, executor=None, store=None) -> IDAResult:
+        chunks: int = 32, progress: bool = False, executor=None, store=None,
+        island_step: int = 1) -> IDAResult:
     """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
 
     Parameters
@@ -173,9 +137,15 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     im, period : intensity measure (:data:`IMS`; ``sa`` at ``period`` [s]).
     ratio : scan grid of ap/ap,min (default that of ``rockarch oas``: 1 … 5, 81 values);
         its last value is the scan limit (censoring).
-    tol, chunks, progress, executor, store : as in :func:`rockarch.spectra.compute_oas`.
+    tol, progress, executor, store : as in :func:`rockarch.spectra.compute_oas`; every
+        record is one task (:class:`RecordScan`), run in this process, on local processes
+        or on Dask, and stored as it finishes (the progress bar counts records).
+    chunks : unused (records are the tasks); kept for callers of earlier versions.
+    island_step : 1 (default) runs every grid value; s > 1 the adaptive scan of
+        :class:`RecordScan`: the same collapse points, safe islands above the first
+        collapse found from every s-th grid value, fewer simulations.
     """
-    motions = Records(motions)
+    motions = tuple(motions)
     if not motions:
         raise ValueError("an IDA needs at least one record")
     p = float(p)
@@ -192,48 +162,34 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     if len(names) != len(motions):
         raise ValueError("give one name per record")
     scale = np.array([im_per_unit_pga(m, im, period) for m in motions])
-    scan = SuiteScan(system, p)
-    rows = np.arange(len(motions), dtype=float)
-    parts = np.array_split(np.arange(rows.size), min(max(chunks, 1), rows.size))
+    scan = RecordScan(system, p, tol, check_island_step(island_step))
+    task_ratio = np.append(ratio, np.nan)
+    # one task per record, the longest records first (they finish last otherwise); each
+    # record is stored under its own key as it finishes (resumable, and reused by any
+    # suite that holds the record)
+    order = sorted(range(len(motions)), key=lambda k: -motions[k].duration)
+    tasks = [(np.full(task_ratio.size, float(k)), task_ratio) for k in order]
     store = sweep.as_store(store)
+    keys = None if store is None else [
+        sweep.chunk_key(scan, motions[k], np.array([p]), task_ratio) for k in order]
     executor, owned = sweep.as_executor(executor)
-    over = np.zeros((rows.size, ratio.size), dtype=bool)
-
-    def run(tasks):
-        return sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
-                                bar=bar)
-
-    # chunks of a bisection round: two per worker of an executor (every chunk carries the
-    # suite's records to its worker), one in this process
-    n_round = 1 if executor is None else min(2 * executor.n_workers, len(parts))
-
-    def run_round(tasks):
-        """A bisection round (one simulation per record) in ``n_round`` chunks, so that the
-        records of a round run in parallel on an executor (the OAS code groups at least 16
-        cheap simulations a chunk, which leaves a few records in one chunk)."""
-        flat_rows = np.concatenate([np.ravel(t[0]) for t in tasks])
-        flat_ratio = np.concatenate([np.ravel(t[1]) for t in tasks])
-        pieces = np.array_split(np.arange(flat_rows.size), min(n_round, flat_rows.size))
-        res = run([(flat_rows[k], flat_ratio[k]) for k in pieces])
-        o = np.concatenate([np.ravel(r[0]) for r in res])
-        m = np.concatenate([np.ravel(r[1]) for r in res])
-        bounds = np.cumsum([0] + [np.size(t[0]) for t in tasks])
-        return [(o[a:b], m[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
-
+    over = np.zeros((len(motions), ratio.size), dtype=bool)
+    evaluated = np.zeros_like(over)
+    collapse = np.full(len(motions), np.nan)
     try:
-        with tqdm(total=over.size, desc=scan.name, unit="sim", disable=not progress,
-                  leave=False) as bar:
-            grid = [np.meshgrid(rows[idx], ratio, indexing="ij") for idx in parts]
-            for idx, (o, _) in zip(parts, run(grid), strict=True):
-                over[idx] = o
-            collapse = _refine_boundary(run_round, rows, ratio, over, tol, bar, len(parts))
+        with tqdm(total=len(motions), desc=scan.name, unit="record",
+                  disable=not progress, leave=False) as bar:
+            res = sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
+                                   bar=TaskBar(bar), keys=keys)
     finally:
         if owned:
             executor.close()
+    for k, (o, r) in zip(order, res, strict=True):
+        over[k], evaluated[k], collapse[k] = o[:-1], ~np.isnan(r[:-1]), r[-1]
     return IDAResult(system=system.name, p=p, ap_min=float(system.ap_min), im=im,
                      records=names, ratio=ratio, overturned=over, ratio_collapse=collapse,
                      im_scale=scale, resurrections=count_resurrections(over), tol=tol,
-                     period=period)
+                     period=period, island_step=scan.island_step, evaluated=evaluated)
 
 
 # --------------------------------------------------------------------------- the fit
@@ -410,6 +366,8 @@ class Fragility:
                "ci": self.ci}
         if r.period is not None:
             out["period"] = r.period
+        if r.island_step > 1:
+            out["island_step"] = r.island_step
         return out
 
 

@@ -20,21 +20,22 @@ from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
+from rockarch.record_scan import check_island_step
 from rockarch.suite import read_suite
 
 #: The --im choices (the library's registry).
 Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
 
 #: From this many records the IDA runs on local processes unless told otherwise: each
-#: bisection round is one simulation per record, in parallel only across processes
-#: (benchmarks/fragility.py: 1.9x on 2 cores for 50 records).
+#: record is one task (its scan and bisection), records in parallel across processes
+#: (benchmarks/fragility.py).
 POOL_MIN_RECORDS = 16
 
 
 def ida_sweep_options(opts: dict, n_records: int) -> dict:
     """The sweep options of an IDA (fragility, design --system --records): as given, else
     local processes on every core from :data:`POOL_MIN_RECORDS` records (records in
-    parallel: bisection rounds are one simulation each)."""
+    parallel, one task each)."""
     sweep = sweep_options(opts)
     if sweep["workers"] is None and sweep["scheduler"] is None \
             and sweep["dask_workers"] is None and n_records >= POOL_MIN_RECORDS \
@@ -74,6 +75,11 @@ def fragility(
                                     "`rockarch oas`); records safe up to it are censored."),
     ratio_steps: int = typer.Option(81, help="Scan values of ap/ap,min from 1."),
     tol: float = cc.TOL_OPT,
+    island_step: int = typer.Option(1, help="Adaptive scan: every ratio up to the first "
+                                    "collapse, then every K-th one, each safe value found "
+                                    "widened to its safe island (same collapse points, "
+                                    "fewer simulations; islands narrower than K ratios "
+                                    "may be missed). 1: every ratio."),
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="Bootstrap resamples of the band "
                                   "(0: none)."),
     level: float = typer.Option(0.95, help="Confidence level of the band."),
@@ -96,6 +102,7 @@ def fragility(
         raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
                          f"{ratio_max}")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
+    check_island_step(island_step)
     rng = im_range_si(im_range, im)
     check_outputs((plot, "--plot", "png"))
     suite = read_suite(list(records) + list(more or []), units=units)
@@ -105,7 +112,7 @@ def fragility(
         res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
                      period=period, ratio=ratios, tol=tol,
                      progress=progress and sys.stderr.isatty(), executor=executor,
-                     store=chunk_store)
+                     store=chunk_store, island_step=island_step)
     if rng is None:
         known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
         rng = (known.min() / 2, known.max() * 2)
