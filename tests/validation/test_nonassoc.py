@@ -46,9 +46,19 @@ def test_converged_state_is_coulomb_admissible_and_slides_without_dilatancy():
     assert c.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)
 
 
+def test_no_convergence_takes_the_macro_block(monkeypatch):
+    # an unconverged iterate is no solution: the end wedge (Eq. 10.9, 7/11 g closed form,
+    # see test_assemblies) below the associative bound is taken, without a warning
+    w = bd.wall(4, 3, 0.4, 0.2)  # converges in ~22 LPs per direction
+    monkeypatch.setattr(nonassoc, "MAX_ITER", 2)
+    c = statics.collapse(w, direction=1)
+    assert c.converged and c.lambda_ == pytest.approx(7 / 11, rel=1e-7)
+
+
 def test_no_convergence_warns_and_returns_the_smallest_iterate(monkeypatch):
     w = bd.wall(4, 3, 0.4, 0.2)  # converges in ~22 LPs per direction
     monkeypatch.setattr(nonassoc, "MAX_ITER", 2)
+    monkeypatch.setattr(statics.mb, "lowest", lambda *args: None)  # no macro-block
     with pytest.warns(RuntimeWarning, match="did not converge after 2 LPs"):
         c = statics.collapse(w, direction=1)
     assert not c.converged and c.iterations == 2

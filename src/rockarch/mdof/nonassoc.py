@@ -30,7 +30,7 @@ from scipy.sparse import csr_matrix, hstack, identity, vstack
 #: Relaxation factor of the normal forces that set the shear capacities (Eq. 10.7).
 RELAX = 0.5
 #: Largest number of Tresca LPs per direction.
-MAX_ITER = 200
+MAX_ITER = 100  # converged cases take 20-65 (walls up to 6 x 10 courses)
 #: Convergence: change of λ (relative) and of the normal forces (relative to Σ m·g).
 TOL_LAMBDA, TOL_FORCE = 1e-9, 1e-7
 
@@ -119,7 +119,7 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
             break
         cur = Iterate(float(res.x[-1]), res.x, np.asarray(res.eqlin.marginals))
         hist.append(cur.lambda_)
-        if cur.lambda_ < best.lambda_:  # iterates above (10.4) are no solutions
+        if 0 < cur.lambda_ < best.lambda_:  # above (10.4): no solution; 0: frozen caps
             best = cur
         n_new = select(a_eq, b_eq, cap, cur.lambda_, nt, sliding_of(cur.duals), cap_lambda)
         if n_new is None:

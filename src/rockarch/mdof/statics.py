@@ -262,11 +262,15 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
             raise ValueError("the structure cannot stand under gravity: it hangs on shear "
                              "at joints without normal force (non-associative friction, "
                              "docs/theory.md §10)")
+        start = state.lambda_
         if not (out.converged and out.iterations == 1):  # else: LP state is a fixed point
             state, converged, iterations = out.state, out.converged, out.iterations
+        # macro-blocks below the converged solution; without one, below the associative
+        # bound (an unconverged iterate is no solution: a wedge that is one wins)
         size = float(np.ptp(geom[3].reshape(-1, 2), axis=0).max())
         wedge = mb.lowest(geom[2:7], mass, direction, lambda zero: mb.solve_zeroed(
-            cost, ub[0], ub[1], a_eq, b_eq, bounds, zero), state.lambda_, size)
+            cost, ub[0], ub[1], a_eq, b_eq, bounds, zero),
+            state.lambda_ if converged else start, size)
         if wedge is not None:  # a macro-block solution below the iteration's (Eq. 10.9)
             state, converged = wedge, True
         elif not converged:
