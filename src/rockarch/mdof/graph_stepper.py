@@ -51,6 +51,21 @@ def _point(j, x, y, cs, sn, r):
 
 
 @nb.njit(cache=True)
+def _rows(ja, jb, r, a, dx, dy, pbx, pby, obx, oby, x, y):
+    """Jacobian row r of a contact direction d = (dx, dy) at B's point p_b (arm o_b from
+    B's centroid); body A's arm runs from its centroid to p_b (the exact gap gradient)."""
+    jb[r, 0] = dx
+    jb[r, 1] = dy
+    jb[r, 2] = obx * dy - oby * dx
+    if a >= 0:
+        oax = pbx - x[a]
+        oay = pby - y[a]
+        ja[r, 0] = -dx
+        ja[r, 1] = -dy
+        ja[r, 2] = -(oax * dy - oay * dx)
+
+
+@nb.njit(cache=True)
 def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
     Jacobian rows (3·nj, 3) w.r.t. bodies a and b; the rows are the exact gradients of the
@@ -77,29 +92,11 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
             gap[k, cc] = nx * dx + ny * dy
             if cc == 1 and gap[k, 1] < gap[k, 0]:
                 best = 1
-            r = 3 * k + cc
-            jb[r, 0] = nx
-            jb[r, 1] = ny
-            jb[r, 2] = obx * ny - oby * nx
-            if a >= 0:
-                oax = pbx - x[a]
-                oay = pby - y[a]
-                ja[r, 0] = -nx
-                ja[r, 1] = -ny
-                ja[r, 2] = -(oax * ny - oay * nx)
+            _rows(ja, jb, 3 * k + cc, a, nx, ny, pbx, pby, obx, oby, x, y)
         pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, best])
         pbx, pby, obx, oby = _point(b, x, y, cs, sn, rb[k, best])
         gap[k, 2] = tx * (pbx - pax) + ty * (pby - pay)
-        r = 3 * k + 2
-        jb[r, 0] = tx
-        jb[r, 1] = ty
-        jb[r, 2] = obx * ty - oby * tx
-        if a >= 0:
-            oax = pbx - x[a]
-            oay = pby - y[a]
-            ja[r, 0] = -tx
-            ja[r, 1] = -ty
-            ja[r, 2] = -(oax * ty - oay * tx)
+        _rows(ja, jb, 3 * k + 2, a, tx, ty, pbx, pby, obx, oby, x, y)
         if a < 0:
             for i in range(3):
                 ja[3 * k + i, 0] = 0.0
