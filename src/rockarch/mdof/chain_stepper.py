@@ -39,7 +39,14 @@ import numba as nb
 import numpy as np
 
 from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp, masked_band
-from rockarch.mdof.kinematics import advance, cap_projection_energy, count_joints, cumint
+from rockarch.mdof.kinematics import (
+    advance,
+    cap_projection_energy,
+    count_joints,
+    cumint,
+    moves_away,
+    record,
+)
 
 CHECK_EVERY = 4
 #: The collapse test runs once a block has rotated by CHECK_FROM·delta_ref.
@@ -377,27 +384,13 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
         if rho / delta_ref > mx:
             mx = rho / delta_ref
         if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
-            out_t[n_rec] = t
+            record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             ke = 0.0
             pe = 0.0
             for j in range(nbod):
-                out_q[n_rec, j, 0] = x[j]
-                out_q[n_rec, j, 1] = y[j]
-                out_q[n_rec, j, 2] = ph[j]
                 ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
                 pe += mass[j] * g * (y[j] - cy0[j])
             out_e[n_rec] = ke + pe
-            for k in range(nj):
-                o0 = gmid[k, 0] > gtol
-                o1 = gmid[k, 1] > gtol
-                if o0 and o1:
-                    out_state[n_rec, k] = 3
-                elif o1:
-                    out_state[n_rec, k] = 1  # pivot on corner 0, corner 1 open
-                elif o0:
-                    out_state[n_rec, k] = 2
-                else:
-                    out_state[n_rec, k] = 0
             n_rec += 1
         if rho > big:
             status = 1
@@ -415,16 +408,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             _contact_step(nbod, nj, x, y, ph, tvx, tvy, tom, rl, rr, n0, im, ii, gtol,
                           0.5 * h, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, t_lam,
                           ufree, t_inset, t_free_, sol, tvx, tvy, tom)
-            dd = 0.0
-            dn = 0.0
-            vn = 0.0
-            for j in range(nbod):
-                ddx = x[j] - cx0[j]
-                ddy = y[j] - cy0[j]
-                dd += mass[j] * (ddx * tvx[j] + ddy * tvy[j]) + ph[j] * tom[j] / ii[j]
-                dn += mass[j] * (ddx * ddx + ddy * ddy) + ph[j] * ph[j] / ii[j]
-                vn += mass[j] * (tvx[j] ** 2 + tvy[j] ** 2) + tom[j] ** 2 / ii[j]
-            if dd > 1e-6 * math.sqrt(dn * vn):
+            if moves_away(mass, ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t
                 break

@@ -22,6 +22,8 @@ from rockarch.mdof.kinematics import (
     count_joints,
     cumint,
     cumint_knots,
+    moves_away,
+    record,
 )
 from rockarch.mdof.rest_solver import make_rest_work
 
@@ -164,18 +166,11 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             rho = max(rho, abs(ph[j]))
         mx = max(mx, rho / m.delta_ref)
         if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
-            out_t[n_rec] = t
+            record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             pe = 0.0
             for j in range(nbod):
-                out_q[n_rec, j, 0] = x[j]
-                out_q[n_rec, j, 1] = y[j]
-                out_q[n_rec, j, 2] = ph[j]
                 pe += mass[j] * g * (y[j] - cy0[j])
             out_e[n_rec] = _kinetic(mass, ws.ii, vx, vy, om) + pe
-            for k in range(nj):
-                o0 = gmid[k, 0] > gtol
-                o1 = gmid[k, 1] > gtol
-                out_state[n_rec, k] = 3 if o0 and o1 else (1 if o1 else (2 if o0 else 0))
             n_rec += 1
         if rho > 0.5 * math.pi:
             status = 1
@@ -195,16 +190,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 tws.st[r] = ws.st[r]
             contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws,
                          trw)
-            dd = 0.0
-            dn = 0.0
-            vn = 0.0
-            for j in range(nbod):
-                ddx = x[j] - cx0[j]
-                ddy = y[j] - cy0[j]
-                dd += mass[j] * (ddx * tvx[j] + ddy * tvy[j]) + ph[j] * tom[j] / ws.ii[j]
-                dn += mass[j] * (ddx * ddx + ddy * ddy) + ph[j] * ph[j] / ws.ii[j]
-                vn += mass[j] * (tvx[j] ** 2 + tvy[j] ** 2) + tom[j] ** 2 / ws.ii[j]
-            if dd > 1e-6 * math.sqrt(dn * vn):
+            if moves_away(mass, ws.ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t
                 break

@@ -102,3 +102,35 @@ def count_joints(gmid, gtol, was_open, lam):
         if op:
             n_open += 1
     return impacts, n_open
+
+
+@nb.njit(cache=True)
+def moves_away(mass, ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
+    """Frozen-configuration collapse test (docs/theory.md §6): does the velocity (tvx, tvy,
+    tom) that gravity alone gives the structure at rest in its current configuration point
+    further away from the initial configuration (cx0, cy0, 0) in the kinetic metric?"""
+    dd = 0.0
+    dn = 0.0
+    vn = 0.0
+    for j in range(mass.shape[0]):
+        ddx = x[j] - cx0[j]
+        ddy = y[j] - cy0[j]
+        dd += mass[j] * (ddx * tvx[j] + ddy * tvy[j]) + ph[j] * tom[j] / ii[j]
+        dn += mass[j] * (ddx * ddx + ddy * ddy) + ph[j] * ph[j] / ii[j]
+        vn += mass[j] * (tvx[j] ** 2 + tvy[j] ** 2) + tom[j] ** 2 / ii[j]
+    return dd > 1e-6 * math.sqrt(dn * vn)
+
+
+@nb.njit(cache=True)
+def record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state):
+    """Store the time, block positions and joint states (0 closed, 1 pivot on corner 0,
+    2 pivot on corner 1, 3 open) of one step in row ``n_rec`` of the history."""
+    out_t[n_rec] = t
+    for j in range(out_q.shape[1]):
+        out_q[n_rec, j, 0] = x[j]
+        out_q[n_rec, j, 1] = y[j]
+        out_q[n_rec, j, 2] = ph[j]
+    for k in range(gmid.shape[0]):
+        o0 = gmid[k, 0] > gtol
+        o1 = gmid[k, 1] > gtol
+        out_state[n_rec, k] = 3 if o0 and o1 else (1 if o1 else (2 if o0 else 0))
