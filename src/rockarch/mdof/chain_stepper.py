@@ -43,9 +43,11 @@ from rockarch.mdof.kinematics import (
     advance,
     cap_projection_energy,
     count_joints,
-    cumint,
+    ground_increment,
+    largest_rotation,
     moves_away,
     record,
+    rest_under_gravity,
 )
 
 CHECK_EVERY = 4
@@ -336,9 +338,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     cap = out_t.shape[0]
     while step < n_steps:
         advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
-        i_new = cumint(t + h, tk, ak, ck)
-        agbar = amp * (i_new - i_prev) / h
-        i_prev = i_new
+        i_prev, agbar = ground_increment(t, h, i_prev, tk, ak, ck, amp)
         for j in range(nbod):
             vfx[j] = vx[j] - h * agbar
             vfy[j] = vy[j] - h * g
@@ -376,11 +376,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
         impacts += di
         if n_open > open_max:
             open_max = n_open
-        rho = 0.0
-        for j in range(nbod):
-            a = abs(ph[j])
-            if a > rho:
-                rho = a
+        rho = largest_rotation(ph)
         if rho / delta_ref > mx:
             mx = rho / delta_ref
         if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
@@ -398,10 +394,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             break
         if rho > CHECK_FROM * delta_ref and step % CHECK_EVERY == 0:
             # frozen-configuration test: from rest at q under gravity alone
-            for j in range(nbod):
-                tvx[j] = 0.0
-                tvy[j] = -h * g
-                tom[j] = 0.0
+            rest_under_gravity(tvx, tvy, tom, h, g)
             for r in range(n):
                 t_inset[r] = inset[r]
                 t_free_[r] = free[r]

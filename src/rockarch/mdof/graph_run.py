@@ -20,10 +20,12 @@ from rockarch.mdof.kinematics import (
     advance,
     cap_projection_energy,
     count_joints,
-    cumint,
     cumint_knots,
+    ground_increment,
+    largest_rotation,
     moves_away,
     record,
+    rest_under_gravity,
 )
 from rockarch.mdof.rest_solver import make_rest_work
 
@@ -120,9 +122,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     cap = out_t.shape[0]
     while step < n_steps:
         advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
-        i_new = cumint(t + h, tk, ak, ck)
-        agbar = amp * (i_new - i_prev) / h
-        i_prev = i_new
+        i_prev, agbar = ground_increment(t, h, i_prev, tk, ak, ck, amp)
         for j in range(nbod):
             vx[j] -= h * agbar
             vy[j] -= h * g
@@ -161,9 +161,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         di, n_open = count_joints(gmid, gtol, was_open, ws.lam)
         impacts += di
         open_max = max(open_max, n_open)
-        rho = 0.0
-        for j in range(nbod):
-            rho = max(rho, abs(ph[j]))
+        rho = largest_rotation(ph)
         mx = max(mx, rho / m.delta_ref)
         if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
             record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
@@ -178,10 +176,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             break
         if rho > CHECK_FROM * m.delta_ref and step % CHECK_EVERY == 0:
             # frozen-configuration test: from rest at q under gravity alone
-            for j in range(nbod):
-                tvx[j] = 0.0
-                tvy[j] = -h * g
-                tom[j] = 0.0
+            rest_under_gravity(tvx, tvy, tom, h, g)
             for r in range(n):
                 tws.lam[r] = 0.5 * ws.lam[r]
             for k in range(nj):

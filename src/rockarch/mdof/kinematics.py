@@ -134,3 +134,31 @@ def record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state):
         o0 = gmid[k, 0] > gtol
         o1 = gmid[k, 1] > gtol
         out_state[n_rec, k] = 3 if o0 and o1 else (1 if o1 else (2 if o0 else 0))
+
+
+@nb.njit(cache=True)
+def ground_increment(t, h, i_prev, tk, ak, ck, amp):
+    """The ground's velocity integral at t + h and the mean ground acceleration over the
+    step [t, t + h] (amp · Δ∫a_g / h, docs/theory.md §6). Returns (integral, mean)."""
+    i_new = cumint(t + h, tk, ak, ck)
+    return i_new, amp * (i_new - i_prev) / h
+
+
+@nb.njit(cache=True)
+def largest_rotation(ph):
+    """max_j |φ_j| of the blocks [rad]."""
+    rho = 0.0
+    for j in range(ph.shape[0]):
+        a = abs(ph[j])
+        if a > rho:
+            rho = a
+    return rho
+
+
+@nb.njit(cache=True)
+def rest_under_gravity(tvx, tvy, tom, h, g):
+    """Free velocities of the frozen-configuration test: at rest, then one step of gravity."""
+    for j in range(tvx.shape[0]):
+        tvx[j] = 0.0
+        tvy[j] = -h * g
+        tom[j] = 0.0
