@@ -124,7 +124,7 @@ def count_resurrections(over: np.ndarray) -> np.ndarray:
 
 def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         im: str = "pga", period: float | None = None, ratio=None, tol: float = OAS_TOL,
-        chunks: int = 32, progress: bool = False, executor=None, store=None,
+        progress: bool = False, executor=None, store=None,
         island_step: int = 1) -> IDAResult:
     """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
 
@@ -140,7 +140,6 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     tol, progress, executor, store : as in :func:`rockarch.spectra.compute_oas`; every
         record is one task (:class:`RecordScan`), run in this process, on local processes
         or on Dask, and stored as it finishes (the progress bar counts records).
-    chunks : unused (records are the tasks); kept for callers of earlier versions.
     island_step : 1 (default) runs every grid value; s > 1 the adaptive scan of
         :class:`RecordScan`: the same collapse points, safe islands above the first
         collapse found from every s-th grid value, fewer simulations.
