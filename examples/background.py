@@ -39,28 +39,32 @@ def main() -> None:
     print(f"\nwrote Figs. {args.figs} in {args.out} ({time.perf_counter() - t0:.0f} s)")
 
 
+def _table(title: str, rows: list[dict], cells: str) -> None:
+    """Print a markdown-ish table: ``cells`` is a format string over each row's keys."""
+    print(title)
+    for r in rows:
+        print("| " + cells.format(**r) + " |")
+
+
 def _fig2(out: Path) -> None:
-    print("Fig. 2 | signal | alpha | share of the map overturned | p with a safe island")
-    for r in background.fig2(out / "fig2.png"):
-        print(f"| {r['signal']} | {r['alpha']} | {100 * r['overturned_share']:.0f} % | "
-              f"{r['p_with_safe_islands']} of {r['n_p']} |")
+    rows = [dict(r, pct=100 * r["overturned_share"]) for r in background.fig2(out / "fig2.png")]
+    _table("Fig. 2 | signal | alpha | share of the map overturned | p with a safe island", rows,
+           "{signal} | {alpha} | {pct:.0f} % | {p_with_safe_islands} of {n_p}")
 
 
 def _fig3a(out: Path) -> None:
-    print("\nFig. 3a | signal | less slender alpha | p where the slender block is lower/equal "
-          "| p where not")
-    for r in background.fig3a(out / "fig3a.png"):
-        print(f"| {r['signal']} | {r['alpha']} | {100 * r['slender_safe']:.0f} % | "
-              f"{_cells(r['p_not'])} |")
+    rows = [dict(r, pct=100 * r["slender_safe"], cells=_cells(r["p_not"]))
+            for r in background.fig3a(out / "fig3a.png")]
+    _table("\nFig. 3a | signal | less slender alpha | p where the slender block is lower/equal "
+           "| p where not", rows, "{signal} | {alpha} | {pct:.0f} % | {cells}")
 
 
 def _fig3b(out: Path) -> None:
-    print("\nFig. 3b | signal | blocks | column at least as safe | column weaker | mean rel. "
-          "| p where weaker")
-    for r in background.fig3b(out / "fig3b.png"):
-        print(f"| {r['signal']} | {r['blocks']} | {100 * r['column_safer']:.0f} % | "
-              f"{100 * r['column_weaker']:.0f} % | {r['mean_rel']:+.3f} | "
-              f"{_cells(r['p_weaker'])} |")
+    rows = [dict(r, safer=100 * r["column_safer"], weaker=100 * r["column_weaker"],
+                 cells=_cells(r["p_weaker"])) for r in background.fig3b(out / "fig3b.png")]
+    _table("\nFig. 3b | signal | blocks | column at least as safe | column weaker | mean rel. "
+           "| p where weaker", rows,
+           "{signal} | {blocks} | {safer:.0f} % | {weaker:.0f} % | {mean_rel:+.3f} | {cells}")
 
 
 if __name__ == "__main__":

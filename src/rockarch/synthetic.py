@@ -63,10 +63,9 @@ class RDKParameters:
     zeta_f: float
 
     def __post_init__(self) -> None:
-        positive("Arias intensity", self.arias)
-        positive("D5-95", self.d5_95)
-        positive("t_mid", self.t_mid)
-        positive("f_mid", self.f_mid)
+        for name, value in (("Arias intensity", self.arias), ("D5-95", self.d5_95),
+                            ("t_mid", self.t_mid), ("f_mid", self.f_mid)):
+            positive(name, value)
         in_range("f_slope", self.f_slope, -5.0, 5.0)
         in_range("zeta_f", self.zeta_f, 0.0, 1.0, lo_open=True, hi_open=True)
 

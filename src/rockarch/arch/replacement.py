@@ -59,13 +59,8 @@ class ReplacementArch:
     original_span: float
     mechanism: ArchMechanism
 
-    @property
-    def p(self) -> float:
-        return self.mechanism.p
-
-    @property
-    def ap_min(self) -> float:
-        return self.mechanism.ap_min
+    p = property(lambda self: self.mechanism.p, doc="Frequency parameter p [rad/s].")
+    ap_min = property(lambda self: self.mechanism.ap_min, doc="ap,min [m/s²].")
 
     @property
     def R_block(self) -> float:  # noqa: N802 - the field's name

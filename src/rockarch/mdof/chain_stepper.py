@@ -41,13 +41,18 @@ import numpy as np
 from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp, masked_band
 from rockarch.mdof.kinematics import (
     advance,
+    at_rest,
+    batch_arrays,
     cap_projection_energy,
-    count_joints,
-    ground_increment,
-    largest_rotation,
+    energy,
+    kinetic,
     moves_away,
+    no_history,
+    predict,
     record,
     rest_under_gravity,
+    tally,
+    triple,
 )
 
 CHECK_EVERY = 4
@@ -275,21 +280,10 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     gtol = gtol_rel * thick_min * scale
     mtot = mass.sum()
     # work arrays
-    x = cx0.copy()
-    y = cy0.copy()
-    ph = np.zeros(nbod)
-    vx = np.zeros(nbod)
-    vy = np.zeros(nbod)
-    om = np.zeros(nbod)
-    xm = np.empty(nbod)
-    ym = np.empty(nbod)
-    phm = np.empty(nbod)
-    vfx = np.empty(nbod)
-    vfy = np.empty(nbod)
-    vfo = np.empty(nbod)
-    tvx = np.empty(nbod)
-    tvy = np.empty(nbod)
-    tom = np.empty(nbod)
+    x, y, ph, vx, vy, om = at_rest(cx0, cy0)
+    xm, ym, phm = triple(nbod)
+    vfx, vfy, vfo = triple(nbod)
+    tvx, tvy, tom = triple(nbod)
     gap = np.zeros((nj, 3))
     jl = np.zeros((n, 3))
     jr = np.zeros((n, 3))
@@ -323,22 +317,11 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     tol_u = TOL_LCP * g * h
     tol_l = TOL_LCP * g * h / wmax
     e_scale = mtot * g * thick_min * scale
-    big = 0.5 * math.pi
-    status = 0
-    t_col = np.nan
-    mx = 0.0
-    impacts = 0
-    open_max = 0
-    n_rec = 0
-    fails = 0
-    t = 0.0
-    step = 0
-    i_prev = 0.0
+    status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
+    t, step, i_prev = 0.0, 0, 0.0
     n_steps = int(math.ceil(t_end / h))
-    cap = out_t.shape[0]
     while step < n_steps:
-        advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
-        i_prev, agbar = ground_increment(t, h, i_prev, tk, ak, ck, amp)
+        i_prev, agbar = predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck, amp)
         for j in range(nbod):
             vfx[j] = vx[j] - h * agbar
             vfy[j] = vy[j] - h * g
@@ -372,23 +355,13 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
         t += h
         step += 1
         # joints, impacts
-        di, n_open = count_joints(gmid, gtol, was_open, lam)
-        impacts += di
-        if n_open > open_max:
-            open_max = n_open
-        rho = largest_rotation(ph)
-        if rho / delta_ref > mx:
-            mx = rho / delta_ref
-        if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
+        impacts, open_max, mx, n_open, rho = tally(gmid, gtol, was_open, lam, ph, delta_ref,
+                                                   impacts, open_max, mx)
+        if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
             record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
-            ke = 0.0
-            pe = 0.0
-            for j in range(nbod):
-                ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
-                pe += mass[j] * g * (y[j] - cy0[j])
-            out_e[n_rec] = ke + pe
+            out_e[n_rec] = energy(mass, ii, vx, vy, om, y, cy0, g)
             n_rec += 1
-        if rho > big:
+        if rho > 0.5 * math.pi:
             status = 1
             t_col = t
             break
@@ -407,12 +380,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
                 break
         if t >= t_motion:
             # at rest: every joint closed and (numerically) no kinetic energy
-            if n_open == 0:
-                ke = 0.0
-                for j in range(nbod):
-                    ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
-                if ke < 1e-12 * e_scale:
-                    break
+            if n_open == 0 and kinetic(mass, ii, vx, vy, om) < 1e-12 * e_scale:
+                break
     return status, t_col, mx, impacts, open_max, n_rec, step, fails
 
 
@@ -420,16 +389,9 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
 def run_batch(model, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
     """Many (scale, amplitude, step) triples in parallel; summaries only."""
     m = scales.shape[0]
-    status = np.zeros(m, dtype=np.int8)
-    t_col = np.full(m, np.nan)
-    mx = np.zeros(m)
-    nimp = np.zeros(m, dtype=np.int64)
-    nopen = np.zeros(m, dtype=np.int64)
-    fails = np.zeros(m, dtype=np.int64)
+    status, t_col, mx, nimp, nopen, fails = batch_arrays(m)
     for i in nb.prange(m):
-        dt = np.zeros(0)
-        dq = np.zeros((0, 1, 3))
-        ds = np.zeros((0, 1), dtype=np.int8)
+        dt, dq, ds = no_history()
         st, tc, mxa, ni, no, _, _, nf = run(model, scales[i], tk, ak, amps[i], hs[i], t_end,
                                             t_motion, gtol_rel, 0, dt, dq, ds, dt)
         status[i] = st

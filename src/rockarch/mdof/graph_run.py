@@ -12,30 +12,12 @@ import math
 import numba as nb
 import numpy as np
 
+from rockarch.mdof import kinematics as kin
 from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
 from rockarch.mdof.graph_solver import NSGS_TOL
 from rockarch.mdof.graph_stepper import contact_step, make_work, project
-from rockarch.mdof.kinematics import (
-    advance,
-    cap_projection_energy,
-    count_joints,
-    cumint_knots,
-    ground_increment,
-    largest_rotation,
-    moves_away,
-    record,
-    rest_under_gravity,
-)
 from rockarch.mdof.rest_solver import make_rest_work
-
-
-@nb.njit(cache=True)
-def _kinetic(mass, ii, vx, vy, om):
-    ke = 0.0
-    for j in range(mass.shape[0]):
-        ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
-    return ke
 
 
 @nb.njit(cache=True)
@@ -80,24 +62,15 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     cx0 = m.c0[:, 0] * scale
     cy0 = m.c0[:, 1] * scale
     gtol = gtol_rel * m.thick_min * scale
-    x = cx0.copy()
-    y = cy0.copy()
-    ph = np.zeros(nbod)
-    vx = np.zeros(nbod)
-    vy = np.zeros(nbod)
-    om = np.zeros(nbod)
-    xm = np.empty(nbod)
-    ym = np.empty(nbod)
-    phm = np.empty(nbod)
-    tvx = np.empty(nbod)
-    tvy = np.empty(nbod)
-    tom = np.empty(nbod)
+    x, y, ph, vx, vy, om = kin.at_rest(cx0, cy0)
+    xm, ym, phm = kin.triple(nbod)
+    tvx, tvy, tom = kin.triple(nbod)
     was_open = np.zeros((nj, 2), dtype=np.bool_)
     keep = np.zeros(n, dtype=np.bool_)
     free_t = np.zeros(nj, dtype=np.bool_)
     anchor = np.zeros(nj)
     gmid = np.zeros((nj, 3))
-    ck = cumint_knots(tk, ak)
+    ck = kin.cumint_knots(tk, ak)
     wmax = 0.0
     for j in range(nbod):
         wmax = max(wmax, ws.im[j], ws.ii[j] * (m.thick_min * scale) ** 2)
@@ -105,24 +78,13 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     tol_u = NSGS_TOL * g * h
     tol_l = NSGS_TOL * g * h / wmax
     e_scale = mass.sum() * g * m.thick_min * scale
-    status = 0
-    t_col = np.nan
-    mx = 0.0
-    impacts = 0
-    open_max = 0
-    slide_max = 0
-    max_slip = 0.0
-    n_rec = 0
-    fails = 0
-    rest = 0
-    t = 0.0
-    step = 0
-    i_prev = 0.0
+    status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
+    slide_max, max_slip, rest = 0, 0.0, 0
+    t, step, i_prev = 0.0, 0, 0.0
     n_steps = int(math.ceil(t_end / h))
-    cap = out_t.shape[0]
     while step < n_steps:
-        advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
-        i_prev, agbar = ground_increment(t, h, i_prev, tk, ak, ck, amp)
+        i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck,
+                                    amp)
         for j in range(nbod):
             vx[j] -= h * agbar
             vy[j] -= h * g
@@ -133,7 +95,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             rest += 1
         n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
-        advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
         any_keep = False
         for r in range(n):
             k = r // 3
@@ -155,20 +117,14 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             for j in range(nbod):
                 v0 += mass[j] * y[j]
             project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws)
-            cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
+            kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
         t += h
         step += 1
-        di, n_open = count_joints(gmid, gtol, was_open, ws.lam)
-        impacts += di
-        open_max = max(open_max, n_open)
-        rho = largest_rotation(ph)
-        mx = max(mx, rho / m.delta_ref)
-        if rec_every > 0 and step % rec_every == 0 and n_rec < cap:
-            record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
-            pe = 0.0
-            for j in range(nbod):
-                pe += mass[j] * g * (y[j] - cy0[j])
-            out_e[n_rec] = _kinetic(mass, ws.ii, vx, vy, om) + pe
+        impacts, open_max, mx, n_open, rho = kin.tally(gmid, gtol, was_open, ws.lam, ph,
+                                                   m.delta_ref, impacts, open_max, mx)
+        if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
+            kin.record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
+            out_e[n_rec] = kin.energy(mass, ws.ii, vx, vy, om, y, cy0, g)
             n_rec += 1
         if rho > 0.5 * math.pi:
             status = 1
@@ -176,7 +132,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             break
         if rho > CHECK_FROM * m.delta_ref and step % CHECK_EVERY == 0:
             # frozen-configuration test: from rest at q under gravity alone
-            rest_under_gravity(tvx, tvy, tom, h, g)
+            kin.rest_under_gravity(tvx, tvy, tom, h, g)
             for r in range(n):
                 tws.lam[r] = 0.5 * ws.lam[r]
             for k in range(nj):
@@ -185,12 +141,12 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 tws.st[r] = ws.st[r]
             contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws,
                          trw)
-            if moves_away(mass, ws.ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
+            if kin.moves_away(mass, ws.ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t
                 break
         if t >= t_motion and n_open == 0 and n_sl == 0:
-            if _kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
+            if kin.kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
                 break
     return status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max, rest
 
@@ -199,18 +155,11 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
 def run_batch(m, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
     """Many (scale, amplitude, step) triples in parallel; summaries only."""
     k = scales.shape[0]
-    status = np.zeros(k, dtype=np.int8)
-    t_col = np.full(k, np.nan)
-    mx = np.zeros(k)
-    nimp = np.zeros(k, dtype=np.int64)
-    nopen = np.zeros(k, dtype=np.int64)
-    fails = np.zeros(k, dtype=np.int64)
+    status, t_col, mx, nimp, nopen, fails = kin.batch_arrays(k)
     slip = np.zeros(k)
     nslide = np.zeros(k, dtype=np.int64)
     for i in nb.prange(k):
-        dt = np.zeros(0)
-        dq = np.zeros((0, 1, 3))
-        ds = np.zeros((0, 1), dtype=np.int8)
+        dt, dq, ds = kin.no_history()
         res = run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, 0, dt, dq,
                   ds, dt)
         status[i] = res[0]

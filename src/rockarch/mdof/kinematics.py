@@ -137,6 +137,42 @@ def record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state):
 
 
 @nb.njit(cache=True)
+def kinetic(mass, ii, vx, vy, om):
+    """Kinetic energy of the blocks, Σ ½(m v² + ω²/i) with ``ii`` the inverse inertia [J]."""
+    ke = 0.0
+    for j in range(mass.shape[0]):
+        ke += 0.5 * (mass[j] * (vx[j] ** 2 + vy[j] ** 2) + om[j] ** 2 / ii[j])
+    return ke
+
+
+@nb.njit(cache=True)
+def energy(mass, ii, vx, vy, om, y, cy0, g):
+    """Mechanical energy above the initial configuration: kinetic + Σ m g (y − y0) [J]."""
+    pe = 0.0
+    for j in range(mass.shape[0]):
+        pe += mass[j] * g * (y[j] - cy0[j])
+    return kinetic(mass, ii, vx, vy, om) + pe
+
+
+@nb.njit(cache=True)
+def predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck, amp):
+    """Start of a Moreau–Jean step (docs/theory.md §6): the midpoint configuration
+    (xm, ym, phm) half a step ahead, and the ground's velocity integral at t + h with the
+    mean ground acceleration over the step. Returns (integral, mean)."""
+    advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
+    return ground_increment(t, h, i_prev, tk, ak, ck, amp)
+
+
+@nb.njit(cache=True)
+def tally(gmid, gtol, was_open, lam, ph, delta_ref, impacts, open_max, mx):
+    """End-of-step counts: impacts and open joints (:func:`count_joints`), the largest
+    rotation rho and the peak rho/delta_ref. Returns (impacts, open_max, mx, n_open, rho)."""
+    di, n_open = count_joints(gmid, gtol, was_open, lam)
+    rho = largest_rotation(ph)
+    return impacts + di, max(open_max, n_open), max(mx, rho / delta_ref), n_open, rho
+
+
+@nb.njit(cache=True)
 def ground_increment(t, h, i_prev, tk, ak, ck, amp):
     """The ground's velocity integral at t + h and the mean ground acceleration over the
     step [t, t + h] (amp · Δ∫a_g / h, docs/theory.md §6). Returns (integral, mean)."""
@@ -162,3 +198,32 @@ def rest_under_gravity(tvx, tvy, tom, h, g):
         tvx[j] = 0.0
         tvy[j] = -h * g
         tom[j] = 0.0
+
+
+@nb.njit(cache=True)
+def batch_arrays(k):
+    """The per-run summaries of a batch of k runs: status, t_collapse, peak rotation ratio,
+    impacts, most open joints, failed contact solves."""
+    return (np.zeros(k, dtype=np.int8), np.full(k, np.nan), np.zeros(k),
+            np.zeros(k, dtype=np.int64), np.zeros(k, dtype=np.int64),
+            np.zeros(k, dtype=np.int64))
+
+
+@nb.njit(cache=True)
+def no_history():
+    """Empty history buffers (times, positions, joint states) for a run that keeps none."""
+    return np.zeros(0), np.zeros((0, 1, 3)), np.zeros((0, 1), dtype=np.int8)
+
+
+@nb.njit(cache=True)
+def at_rest(cx0, cy0):
+    """Positions and velocities (x, y, φ, vx, vy, ω) of blocks at rest with their centres
+    at (cx0, cy0)."""
+    n = cx0.shape[0]
+    return cx0.copy(), cy0.copy(), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+
+
+@nb.njit(cache=True)
+def triple(n):
+    """Three work vectors (x, y, φ or vx, vy, ω) for n blocks."""
+    return np.empty(n), np.empty(n), np.empty(n)
