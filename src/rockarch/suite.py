@@ -63,16 +63,16 @@ class SuiteRecord:
     name: str
     motion: GroundMotion
     path: str | None = None
-    rsn: int | None = None
-    event: str | None = None
+    rsn: int | None = None  # NGA-West2 record sequence number
+    event: str | None = None  # earthquake name
     year: int | None = None
     station: str | None = None
-    component: str | None = None
-    magnitude: float | None = None
-    mechanism: str | None = None
-    rjb: float | None = None
-    rrup: float | None = None
-    vs30: float | None = None
+    component: str | None = None  # e.g. "180" or "H1"
+    magnitude: float | None = None  # moment magnitude Mw
+    mechanism: str | None = None  # fault mechanism
+    rjb: float | None = None  # Joyner–Boore distance [km]
+    rrup: float | None = None  # rupture distance [km]
+    vs30: float | None = None  # time-averaged shear-wave velocity of the top 30 m [m/s]
     scale_factor: float | None = None
     scaled: bool = False
 
