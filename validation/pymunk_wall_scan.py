@@ -3,8 +3,9 @@ solver iterations (docs/validation.md, general assemblies).
 
     PYTHONPATH=src .venv/bin/python validation/pymunk_wall_scan.py
 
-For the 4 x 3 and 4 x 10 walls of 0.4 x 0.2 m blocks (rockarch: ap_min = 1.0 g, Eqs.
-(10.6)-(10.8) of docs/theory.md; the associative LP alone 1.5 g and 5 g) the ground
+For the 4 x 3 and 4 x 10 walls of 0.4 x 0.2 m blocks (rockarch: ap_min = 7/11 g, Eq.
+(10.9) of docs/theory.md; the associative LP alone 1.5 g and 5 g; rockarch's own time
+history under the same ramp: validation/wall_ramp.py) the ground
 acceleration f·g is ramped in over 0.5 s and held 2 s, in both directions, with pymunk's
 contact solver at 60 (the oracle's default) and 300 iterations. One line per run: stands
 (largest centroid displacement below 1e-4 of the size) or collapses, and the blocks that

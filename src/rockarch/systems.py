@@ -374,6 +374,12 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
 
 
 def _pair(name: str, values, n: int = 2) -> tuple:
+    """``values`` as an n-tuple: a sequence, or the CLI's comma-separated text ("0.4,0.2")."""
+    if isinstance(values, str):
+        try:
+            values = [float(v) for v in values.split(",")]
+        except ValueError:
+            raise ValueError(f"{name} needs {n} comma-separated numbers, got {values!r}") from None
     vals = tuple(values)
     if len(vals) != n:
         raise ValueError(f"{name} needs {n} values, got {len(vals)}")
@@ -411,6 +417,9 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
         bw, bh = _pair("--block (B,H)", block)
         if wall is not None:
             rows, cols = _pair("--wall (ROWS,COLUMNS)", wall)
+            if not all(float(v).is_integer() for v in (rows, cols)):
+                raise ValueError(f"--wall needs whole numbers of rows and columns, got {wall!r}")
+            rows, cols = int(rows), int(cols)
             return builders.wall(rows, cols, bw, bh, mu=mu, g=g)
         _need("mdof", bay=bay, lintel=lintel)
         return builders.colonnade(colonnade, bw, bh, bay, lintel, mu=mu, g=g)

@@ -164,26 +164,45 @@ def test_gauss_seidel_solver_newmark():
 
 
 @pytest.mark.parametrize("mu", [0.5, math.inf])
-def test_fully_open_joint_separates_only_with_friction(mu):
-    # a block 1 mm above the ground moving sideways at 1 m/s, one contact solve: with
-    # friction the open joint carries no impulse at all (it separates: the velocity is
-    # untouched); without (mu = inf, the no-sliding model) the no-slip row holds the hinge
+@pytest.mark.parametrize("banded", [True, False])
+def test_fully_open_joint_separates(mu, banded):
+    # a block 1 mm above the ground moving sideways at 1 m/s, one contact solve: the open
+    # joint carries no impulse at all, the velocity is untouched; with friction and without
+    # (mu = inf is the limit of Coulomb's cone: no shear without compression,
+    # docs/theory.md §9), by the exact banded solve and by Gauss–Seidel
     from rockarch.mdof import graph_stepper as gs
     from rockarch.mdof.kernel_data import graph_model
     from rockarch.mdof.rest_solver import make_rest_work
 
     blk = mdof.single_block(0.5, 1.0)
-    m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))
+    m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))._replace(banded=banded)
     ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1] + 1e-3, np.zeros(1)
     vx, vy, om = np.array([1.0]), np.zeros(1), np.zeros(1)
     h = 1e-3  # the gap (1 mm) is not closed within the step: no speculative contact
     gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws,
                     make_rest_work(m, 1.0))
-    if math.isfinite(mu):
-        assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
-    else:  # the hinge stops the base corner's sideways motion (r_y = -H/2 = -0.5 m)
-        assert abs(vx[0] + 0.5 * om[0]) < 1e-6 and vx[0] < 1.0
+    assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
+
+
+def test_no_sliding_joint_holds_while_compressed():
+    # the other half of the mu = inf limit: a block standing on the ground pushed sideways
+    # (free velocity 1 m/s at its centre, gravity's step -g·h) does not slide: its base
+    # corners keep U_t = 0 (to the solve's 1e-9 tolerance) and the impulse is compressive
+    from rockarch.mdof import graph_stepper as gs
+    from rockarch.mdof.kernel_data import graph_model
+    from rockarch.mdof.rest_solver import make_rest_work
+
+    blk = mdof.single_block(0.5, 1.0)
+    m = graph_model(blk)
+    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1].copy(), np.zeros(1)
+    h = 1e-3
+    vx, vy, om = np.array([0.01]), np.array([-G * h]), np.zeros(1)
+    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws,
+                    make_rest_work(m, 1.0))
+    assert ws.lam[0] + ws.lam[1] > 0.0
+    assert abs(vx[0] + 0.5 * om[0]) < 1e-6  # the base (r_y = -H/2) does not slide
 
 
 def test_wide_wall_at_rest_on_gauss_seidel():

@@ -108,7 +108,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         for k in range(nj):
             for c in range(3):
                 gmid[k, c] = ws.gap[k, c]
-            max_slip = max(max_slip, abs(ws.gap[k, 2]))
+            if ws.gap[k, 0] <= gtol or ws.gap[k, 1] <= gtol:  # a separated joint does not slip
+                max_slip = max(max_slip, abs(ws.gap[k, 2]))
         if not any_keep:
             for k in range(nj):
                 anchor[k] = ws.gap[k, 2]

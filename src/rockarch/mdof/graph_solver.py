@@ -6,11 +6,13 @@ The per-step problem (docs/theory.md Eqs. (9.1)–(9.3)): for every joint k, cor
 
     |Λ_t| ≤ μ·(Λ_n0 + Λ_n1),   U_t ≠ 0  ⇒  Λ_t = −μ·(Λ_n0 + Λ_n1)·sign(U_t),
 
-or, for μ = ∞, the no-slip row U_t = 0 (Λ_t free). It is solved by non-smooth (block)
-Gauss–Seidel, the method of Jean and Moreau's NSCD (LMGC90, Siconos): joint after joint,
-the joint's 3×3 problem is solved *exactly* with the others' impulses fixed, by enumerating
-its 4 (μ = ∞) or 12 contact states (each corner closed/open × stick/slip+/slip−), each a
-3×3 linear solve; sweeps alternate direction and are warm-started from the previous step.
+or, for μ = ∞, the no-slip row U_t = 0 (Λ_t free) while a corner carries an impulse and
+Λ_t = 0 when neither does (the limit μ → ∞ of the cone: no shear without compression).
+It is solved by non-smooth (block) Gauss–Seidel, the method of Jean and Moreau's NSCD
+(LMGC90, Siconos): joint after joint, the joint's 3×3 problem is solved *exactly* with the
+others' impulses fixed, by enumerating its 4 (μ = ∞) or 12 contact states (each corner
+closed/open × stick/slip+/slip−), each a 3×3 linear solve; sweeps alternate direction and
+are warm-started from the previous step.
 The sweeps stop when a sweep changes no joint's relative velocity by more than
 ``SWEEP_TOL``·g·h, the tolerance of the local solves' sign conditions too; a step that does
 not converge within ``NSGS_MAX_SWEEPS`` sweeps counts as a failure (``lcp_failures``).
@@ -86,7 +88,13 @@ def _case_system(w, q, mu, case, a, r):
             a[c, 1] = w[c, 1]
             a[c, 2] = w[c, 2]
             r[c] = -q[c]
-    if st == 0:
+    if sn == 3 and math.isinf(mu):
+        # both corners open: no normal impulse, so no shear either (μ → ∞ limit of Coulomb)
+        a[2, 0] = 0.0
+        a[2, 1] = 0.0
+        a[2, 2] = 1.0
+        r[2] = 0.0
+    elif st == 0:
         a[2, 0] = w[2, 0]
         a[2, 1] = w[2, 1]
         a[2, 2] = w[2, 2]

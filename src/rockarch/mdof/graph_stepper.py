@@ -168,8 +168,14 @@ def banded_friction(m, ws, eps, tol_u, tol_l):
                 ws.lo[3 * k + c] = 0.0
                 ws.hi[3 * k + c] = np.inf
             if math.isinf(m.mu[k]):
-                ws.lo[3 * k + 2] = -np.inf
-                ws.hi[3 * k + 2] = np.inf
+                # no slip while the joint is compressed, no shear when it is not (μ → ∞);
+                # after three iterations a joint once freed stays free (the set only grows)
+                b = np.inf if ws.lam[3 * k] + ws.lam[3 * k + 1] > 0.0 or (
+                    _outer >= 3 and ws.hi[3 * k + 2] > 0.0) else 0.0
+                ws.lo[3 * k + 2] = -b
+                ws.hi[3 * k + 2] = b
+                if b > 0.0:
+                    ws.st[3 * k + 2] = 0  # an infinite bound is never held
             else:
                 b = m.mu[k] * max(ws.lam[3 * k] + ws.lam[3 * k + 1], 0.0)
                 if _outer >= 3:  # damped: the plain iteration may oscillate
@@ -187,7 +193,11 @@ def banded_friction(m, ws, eps, tol_u, tol_l):
         for k in range(nj):
             smax = max(smax, ws.lam[3 * k] + ws.lam[3 * k + 1])
         for k in range(nj):
-            if not math.isinf(m.mu[k]):
+            if math.isinf(m.mu[k]):
+                loaded = ws.lam[3 * k] + ws.lam[3 * k + 1] > 0.0
+                if (ws.hi[3 * k + 2] > 0.0) != loaded and (loaded or _outer < 3):
+                    diff = np.inf
+            else:
                 b = m.mu[k] * (ws.lam[3 * k] + ws.lam[3 * k + 1])
                 if ws.st[3 * k + 2] != 0:
                     diff = max(diff, abs(b - ws.hi[3 * k + 2]))

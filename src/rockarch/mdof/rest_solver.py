@@ -5,7 +5,7 @@ step to step but its loads, yet non-smooth Gauss–Seidel needs tens of sweeps p
 each step's change of the ground's inertia force through a hyperstatic graph. The rest path
 (docs/theory.md Eq. (9.7)) tries, before any sweep, the solution v⁺ = 0: every body moves with
 the ground. Its impulses are the last step's Λ on the support S (the closed corner rows that
-carried an impulse, the tangential rows of their joints, every no-slip row), corrected by
+carried an impulse and the tangential rows of their joints), corrected by
 the weighted least-norm increment that balances this step's loads,
 
     ΔΛ_S = D·J_S·(J_SᵀD·J_S)⁻¹·r,   r = −M·v_free − J_SᵀΛ_S,
@@ -123,9 +123,9 @@ def band_substitute(n, fac, x):
 @nb.njit(cache=True)
 def _support(m, ws, rw, every):
     """S (rw.rs_new): closed corner rows with a last impulse (``every``: all closed corner
-    rows), the tangential rows of their joints, every no-slip row; rw.tb_new: ±1 for a
-    joint whose last Λ_t was at ±μ·ΣΛ_n (held there), else 0. True if either differs from
-    the factorised one."""
+    rows) and the tangential rows of their joints (μ = ∞ too: no shear without a corner);
+    rw.tb_new: ±1 for a joint whose last Λ_t was at ±μ·ΣΛ_n (held there), else 0. True if
+    either differs from the factorised one."""
     changed = False
     for k in range(m.n0.shape[0]):
         r = 3 * k
@@ -133,7 +133,7 @@ def _support(m, ws, rw, every):
         s1 = (every or ws.lam[r + 1] > 0.0) and ws.bias[r + 1] == 0.0
         rw.rs_new[r] = s0
         rw.rs_new[r + 1] = s1
-        rw.rs_new[r + 2] = s0 or s1 or math.isinf(m.mu[k])
+        rw.rs_new[r + 2] = s0 or s1
         rw.tb_new[k] = 0
         if (s0 or s1) and not math.isinf(m.mu[k]) and not every:
             bound = m.mu[k] * (ws.lam[r] + ws.lam[r + 1])
@@ -148,8 +148,8 @@ def _support(m, ws, rw, every):
 @nb.njit(cache=True)
 def _weights(m, ws, rw, every):
     """Row weights D of S from the last impulses: a corner's Λ_n (``every``: plus their mean,
-    1 if none), a free tangential row's min(μ, 1)·(Λ_n0 + Λ_n1) (the mean corner weight for
-    a no-slip row without them)."""
+    1 if none), a free tangential row's min(μ, 1)·(Λ_n0 + Λ_n1) (the mean corner weight if
+    its corners carried none)."""
     tot = 0.0
     cnt = 0
     for k in range(m.n0.shape[0]):
@@ -312,13 +312,11 @@ def _admissible(m, rw, tol_l):
             if rw.lt[r + c] < -tol_l:
                 rw.rs_new[r + c] = False
                 out += 1
-        if math.isinf(m.mu[k]):
-            continue
         if not (rw.rs_new[r] or rw.rs_new[r + 1]):
             out += rw.rs_new[r + 2]
             rw.rs_new[r + 2] = False
             rw.tb_new[k] = 0
-        elif rw.tb_set[k] == 0 and \
+        elif rw.tb_set[k] == 0 and not math.isinf(m.mu[k]) and \
                 abs(rw.lt[r + 2]) > m.mu[k] * (rw.lt[r] + rw.lt[r + 1]) + tol_l:
             rw.tb_new[k] = 1 if rw.lt[r + 2] > 0.0 else -1
             out += 1

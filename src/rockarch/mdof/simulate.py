@@ -40,8 +40,9 @@ class MDOFResponse(Response):
     frame), ``joints`` (nt, nj) joint state: 0 closed, 1 rotating about corner 0 (corner 1
     open), 2 about corner 1 (corner 0 open), 3 both corners open; ``energy`` (nt,) kinetic +
     potential energy relative to the start (ground frame, per unit depth and density).
-    ``max_slip`` is the largest tangential offset of the two sides of any joint [m] (0 for
-    the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding at once.
+    ``max_slip`` is the largest tangential offset of the two sides of any joint in contact
+    [m] (0 for the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding
+    at once.
     """
 
     assembly: Assembly
