@@ -23,6 +23,7 @@ assembly.
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -230,10 +231,11 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     mass = np.asarray(mass, float)
     nb_, nj = len(mass), len(normal)
     mu = np.full(nj, np.inf) if mu is None else np.asarray(mu, float)
-    if direction is None:
-        both = [limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu,
-                               g=g, direction=d, names=names, friction=friction)
-                for d in (1, -1)]
+    if direction is None:  # both directions at once: HiGHS releases the GIL
+        with ThreadPoolExecutor(max_workers=2) as pool:
+            both = list(pool.map(lambda d: limit_analysis(
+                mass, inertia, centroid, corners, normal, body_a, body_b, mu, g=g,
+                direction=d, names=names, friction=friction), (1, -1)))
         return min(both, key=lambda c: c.lambda_)
     a_ub, b_ub = _friction(mu)
     a_eq, b_eq = _equilibrium(mass, np.asarray(centroid, float), np.asarray(corners, float),
