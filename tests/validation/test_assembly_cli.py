@@ -75,6 +75,13 @@ def test_bridge_options_build_piers(extra, kind, nb):
 def test_wall_colonnade_and_assembly_file(tmp_path):
     w = system("mdof", wall=(3, 4), block=(0.4, 0.2), friction=0.5).assembly
     assert w.kind == "wall" and w.ap_min == pytest.approx(0.5 * G, rel=1e-7)
+    # the CLI's text forms are the same wall; bad text is a one-line ValueError
+    assert system("mdof", wall="3,4", block="0.4,0.2", friction=0.5).assembly.n_blocks \
+        == w.n_blocks
+    for wall, msg in (("3,x", "comma-separated numbers"), ("3.5,4", "whole numbers"),
+                      ("3", "needs 2 values")):
+        with pytest.raises(ValueError, match=msg):
+            system("mdof", wall=wall, block="0.4,0.2")
     c = system("mdof", colonnade=2, block=(0.3, 2.0), bay=1.0, lintel=0.4).assembly
     assert c.kind == "trilithon" and c.ap_min == pytest.approx(0.15 * G, rel=1e-7)
     f = tmp_path / "a.json"
