@@ -18,7 +18,7 @@ demo: $(VENV)/.installed
 	$(BIN)/python examples/demo.py --out $(OUT)
 
 test: $(VENV)/.installed
-	$(BIN)/ruff check src tests examples benchmarks
+	$(BIN)/ruff check src tests examples benchmarks validation
 	$(BIN)/python -m pytest -q -m "not slow"
 
 test-all: $(VENV)/.installed
