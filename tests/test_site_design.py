@@ -182,3 +182,26 @@ def test_design_cli_fourhinge_with_a_site_file(block_site, tmp_path):
     sys_ = ra.system("fourhinge", shape="circular", span=10, rise=2.89, thickness=0.35)
     ratio, _ = site.curve_at(block_site, sys_.p_ref, "envelope")
     assert (out["p"], out["ap_min"], out["ratio"]) == (sys_.p_ref, sys_.ap_min, ratio)
+
+
+def test_design_records_units(clips, tmp_path):
+    # two-column records in cm/s² read with --units cm/s2 give the design of the same
+    # records in m/s² (a rigid block: the Housner kernel, fast); without --units they are
+    # taken as m/s²: the IDA scales every record, so the design is the same, but the
+    # implausible PGA (wrong units?) is a warning on stderr
+    for unit, f in (("m", 1.0), ("cm", 100.0)):
+        d = tmp_path / unit
+        d.mkdir()
+        for m in clips:
+            np.savetxt(d / f"{m.name}.txt", np.column_stack([m.t, f * m.a]))
+    base = ["design", "--system", "block", "--alpha", "0.2", "--p", "2", "--ratio-steps", "9",
+            "--tol", "0.05", "--bootstrap", "0", "--no-store", "--json", "--records"]
+    ref = runner.invoke(app, [*base, str(tmp_path / "m")])
+    cm = runner.invoke(app, [*base, str(tmp_path / "cm"), "--units", "cm/s2"])
+    assert ref.exit_code == 0 and cm.exit_code == 0, ref.output + cm.output
+    # the same records to the last bit of the unit conversion (×0.01 of a ×100 value)
+    assert json.loads(cm.stdout)["pga_safe"] == pytest.approx(
+        json.loads(ref.stdout)["pga_safe"], rel=1e-12)
+    bad = runner.invoke(app, [*base, str(tmp_path / "cm")])
+    assert bad.exit_code == 0 and "not plausible: wrong units?" in bad.stderr
+    assert "warning" not in cm.stderr

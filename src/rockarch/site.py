@@ -23,15 +23,13 @@ from rockarch import __version__, spectra, sweep, systems
 from rockarch.charsite import CURVES
 from rockarch.constants import G_STANDARD, OAS_TOL
 from rockarch.motion import GroundMotion
-from rockarch.suite import read_suite, record_files
+from rockarch.suite import PGA_RANGE, read_suite, record_files
 from rockarch.sweep.limits import check_simulations
 
 KIND = "rockarch-site-oas"
 FORMAT_VERSION = 1
 #: Default slenderness of the site's block: slender (the paper's characteristic OAS).
 ALPHA = 0.05
-#: A record whose PGA lies outside this range [m/s²] has its units wrong.
-PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 
 def record_paths(paths) -> list[Path]:

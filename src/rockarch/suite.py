@@ -330,7 +330,8 @@ def _header_fields(motion: GroundMotion) -> dict:
             "station": ", ".join(parts[2:-1]) or None, "component": parts[-1] or None}
 
 
-#: A record whose PGA lies outside this range [m/s²] has its units wrong (as in site-oas).
+#: A record whose PGA lies outside this range [m/s²] has its units wrong (site-oas: an
+#: error; suites: a note, printed as a warning by the CLI).
 PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 

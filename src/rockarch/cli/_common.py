@@ -21,6 +21,7 @@ from rockarch.arch.geometry import SHAPES
 from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.motion import SIGNALS, GroundMotion, pulse
 from rockarch.records import read_record
+from rockarch.suite import Suite, read_suite
 from rockarch.sweep import check_steps, default_store_dir
 from rockarch.systems import KINDS
 
@@ -175,6 +176,15 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
 
 def echo_err(msg: str) -> None:
     typer.echo(msg, err=True)
+
+
+def read_records(sources, units: str | None) -> Suite:
+    """The suite of --records, its notes (records left out, implausible PGAs: wrong units?)
+    printed as warnings on stderr."""
+    suite = read_suite(sources, units=units)
+    for note in suite.notes:
+        echo_err(f"warning: {note}")
+    return suite
 
 
 # --- options shared by several commands ----------------------------------------------------

@@ -14,14 +14,13 @@ import typer
 from rockarch import fragility as fr
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
-from rockarch.cli._common import echo_err, guarded
+from rockarch.cli._common import echo_err, guarded, read_records
 from rockarch.cli._groups import SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.record_scan import check_island_step
-from rockarch.suite import read_suite
 
 #: The --im choices (the library's registry).
 Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
@@ -105,7 +104,7 @@ def fragility(
     check_island_step(island_step)
     rng = im_range_si(im_range, im)
     check_outputs((plot, "--plot", "png"))
-    suite = read_suite(list(records) + list(more or []), units=units)
+    suite = read_records(list(records) + list(more or []), units)
     motions = suite.motions
     with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):

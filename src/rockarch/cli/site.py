@@ -27,6 +27,7 @@ from rockarch.cli._common import (
     p_grid,
     print_json,
     ratio_grid,
+    read_records,
     value,
 )
 from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
@@ -37,7 +38,6 @@ from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
 from rockarch.output.fragility_plots import fragility_html
 from rockarch.output.report import write_report, write_system_report
-from rockarch.suite import read_suite
 from rockarch.systems import system as make_system
 
 
@@ -140,6 +140,8 @@ def design(
                                        "(folder or files); the site OAS, its characteristic "
                                        "curves and the replacement's fragility are computed "
                                        "(and kept in the store) on the fly."),
+    units: str = typer.Option(None, help="Units of two-column --records: m/s2, g, cm/s2 "
+                              "(.AT2 files state their own)."),
     pga: float = typer.Option(None, help="With --records: probability of collapse at this "
                               "PGA [m/s²]."),
     probability: float = typer.Option(0.1, help="With --records: the PGA at this "
@@ -189,7 +191,7 @@ def design(
     if save_site is not None and not records:
         raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
     if records:
-        suite = read_suite(records)
+        suite = read_records(records, units)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
         with open_sweep(**sweep_options(opts), n_sims=n_sims,
                         echo=echo_err) as (executor, chunk_store):
@@ -291,7 +293,7 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
         if opt["bootstrap"] < 0:
             raise ValueError(f"--bootstrap must be >= 0, got {opt['bootstrap']}")
         ratios = ratio_grid(1.0, opt["ratio_max"], opt["ratio_steps"])
-        suite = read_suite(records)
+        suite = read_records(records, opt["units"])
         with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
                         echo=echo_err) as (executor, chunk_store):
             res = design_system(sysobj, records=suite, ratio=ratios, tol=opt["tol"],
