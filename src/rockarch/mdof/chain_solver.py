@@ -24,6 +24,7 @@ TOL_LCP = 1e-7
 
 @nb.njit(cache=True, inline="always")
 def _band_solve(n, kb, rhs, lb, out, kd):
+    """:func:`band_solve` for half-bandwidth kd (inlined: a constant kd is unrolled)."""
     for i in range(n):
         for d in range(kd, -1, -1):
             j = i - d
@@ -79,7 +80,9 @@ def masked_band(n, wb, rows, eps, kb):
 
 
 @nb.njit(cache=True, inline="always")
-def _wmul(n, wb, lam, i, kd):
+def wmul(n, wb, lam, i, kd):
+    """(W·lam)_i from the lower band of half-bandwidth kd (inlined: a constant kd, the
+    chain's KD, is unrolled by the compiler)."""
     s = wb[i, 0] * lam[i]
     for d in range(1, kd + 1):
         j = i - d
@@ -92,20 +95,10 @@ def _wmul(n, wb, lam, i, kd):
 
 
 @nb.njit(cache=True)
-def wmul(n, wb, lam, i):
-    """(W·lam)_i from the lower band (chains: KD a compile-time constant, as in
-    :func:`band_solve`)."""
-    kd = wb.shape[1] - 1
-    if kd == KD:
-        return _wmul(n, wb, lam, i, KD)
-    return _wmul(n, wb, lam, i, kd)
-
-
-@nb.njit(cache=True)
 def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
     """Exact LCP by a primal active-set method on the equivalent strictly convex QP
     min ½ΛᵀWΛ + ΛᵀU_free,  Λ_n ≥ 0 (normal rows 3k, 3k+1), Λ_s free (no-slip rows 3k+2
-    with ``inset``; the other rows are fixed at 0).
+    with ``inset``; the other rows are fixed at 0); W is a chain's band (half-bandwidth KD).
 
     ``free`` (warm start in, final working set out): rows not held at their bound. Starts
     from Λ = 0 (feasible); every full step strictly lowers the objective, so it cannot
@@ -119,7 +112,7 @@ def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
         masked_band(n, wb, free, eps, kb)
         for i in range(n):
             rhs[i] = -ufree[i] if free[i] else 0.0
-        if not band_solve(n, kb, rhs, lb, sol):
+        if not _band_solve(n, kb, rhs, lb, sol, KD):
             return -1
         # largest feasible step towards the subproblem's solution
         alpha = 1.0
@@ -147,7 +140,7 @@ def lcp(n, wb, ufree, inset, free, lam, kb, lb, rhs, eps, tol_u, tol_l, sol):
         for i in range(n):
             if i % 3 == 2 or free[i]:
                 continue
-            u = ufree[i] + wmul(n, wb, lam, i)
+            u = ufree[i] + wmul(n, wb, lam, i, KD)
             if u < worst:
                 worst = u
                 add = i
@@ -189,7 +182,7 @@ def _box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l, kd):
                 rhs[i] = s
             else:
                 rhs[i] = lam[i]
-        if not band_solve(n, kb, rhs, lb, sol):
+        if not _band_solve(n, kb, rhs, lb, sol, kd):
             return -1
         alpha = 1.0
         block = -1
@@ -220,7 +213,7 @@ def _box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l, kd):
         for i in range(n):
             if st[i] == 0 or lo[i] == hi[i]:
                 continue
-            u = q[i] + wmul(n, wb, lam, i) + eps * lam[i]
+            u = q[i] + wmul(n, wb, lam, i, kd) + eps * lam[i]
             v = -u if st[i] == 1 else u  # held at lo: wants to go lower iff u < 0
             if v > worst:
                 worst = v
@@ -231,7 +224,6 @@ def _box_qp(n, wb, q, lo, hi, st, lam, kb, lb, rhs, sol, eps, tol_u, tol_l, kd):
             return it + 1
         st[add] = 0
     return -_MAX_PIVOTS
-
 
 
 @nb.njit(cache=True)
