@@ -373,16 +373,17 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     return MechanismSystem(mech, t_free=t_free, h_factor=sdof_h)
 
 
-def _pair(name: str, values, n: int = 2) -> tuple:
-    """``values`` as an n-tuple: a sequence, or the CLI's comma-separated text ("0.4,0.2")."""
+def _pair(name: str, form: str, values) -> tuple:
+    """``values`` as a pair: a sequence, or the CLI's comma-separated text ("0.4,0.2")."""
     if isinstance(values, str):
         try:
             values = [float(v) for v in values.split(",")]
         except ValueError:
-            raise ValueError(f"{name} needs {n} comma-separated numbers, got {values!r}") from None
+            raise ValueError(f"{name} needs 2 comma-separated numbers ({form}), got "
+                             f"{values!r}") from None
     vals = tuple(values)
-    if len(vals) != n:
-        raise ValueError(f"{name} needs {n} values, got {len(vals)}")
+    if len(vals) != 2:
+        raise ValueError(f"{name} needs 2 values ({form}), got {len(vals)}")
     return vals
 
 
@@ -414,9 +415,9 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
         return assembly_file.read_assembly(assembly, mu=mu, g=g)
     if wall is not None or colonnade is not None:
         _need("mdof", block=block)
-        bw, bh = _pair("--block (B,H)", block)
+        bw, bh = _pair("--block", "B,H", block)
         if wall is not None:
-            rows, cols = _pair("--wall (ROWS,COLUMNS)", wall)
+            rows, cols = _pair("--wall", "ROWS,COLUMNS", wall)
             if not all(float(v).is_integer() for v in (rows, cols)):
                 raise ValueError(f"--wall needs whole numbers of rows and columns, got {wall!r}")
             rows, cols = int(rows), int(cols)

@@ -242,13 +242,6 @@ def column_blocks(column: str) -> list[np.ndarray]:
 
 # --- MDOF structures (rockarch.systems.mdof_assembly; docs/theory.md §10) -------------------
 
-def _ints(name: str, text: str, n: int) -> list[int]:
-    vals = float_list(name, text)
-    if len(vals) != n or not all(v == int(v) for v in vals):
-        raise ValueError(f"{name} needs {n} comma-separated integers, got {text!r}")
-    return [int(v) for v in vals]
-
-
 #: The command parameters of the MDOF structure options, passed on to systems.system().
 MDOF_STRUCTURE_KEYS = ("column", "friction", "spans", "pier_height", "pier_width",
                        "pier_blocks", "abutments", "wall", "block", "colonnade", "bay",
@@ -263,8 +256,4 @@ def mdof_structure(params: dict) -> dict:
         positive("--friction", kw["friction"])
     if "column" in kw:
         kw["column"] = column_blocks(kw["column"])
-    if "wall" in kw:
-        kw["wall"] = _ints("--wall", kw["wall"], 2)
-    if "block" in kw:
-        kw["block"] = [float(v) for v in float_list("--block", kw["block"])]
-    return kw
+    return kw  # --wall and --block stay text: rockarch.systems parses them
