@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rockarch.motion import GroundMotion
-from rockarch.spectra import _refine_boundary
+from rockarch.spectra import refine_boundary
 
 
 def check_island_step(step) -> int:
@@ -50,7 +50,7 @@ class RecordScan:
     ``ratio`` the scan grid followed by one NaN. Record k runs on the grid (below), then its
     collapse point is bisected between the last safe grid value below the first collapse
     and that collapse, by the code of the OAS boundary
-    (:func:`rockarch.spectra._refine_boundary`), so the collapse point is that of an OAS
+    (:func:`rockarch.spectra.refine_boundary`), so the collapse point is that of an OAS
     of the record at this p, bit for bit. Returns the grid's verdicts and responses (NaN:
     not run), and in the last slot whether the record collapses and its collapse ratio
     (NaN: censored). A task holds no barrier: the records of a suite run side by side on
@@ -88,7 +88,7 @@ class RecordScan:
             return [self.system.run(motion, np.full(np.size(r), self.p), np.ravel(r))
                     for _, r in tasks]
 
-        collapse = _refine_boundary(run, np.array([self.p]), grid, over[None], self.tol,
+        collapse = refine_boundary(run, np.array([self.p]), grid, over[None], self.tol,
                                     TaskBar(), 1)[0]
         return np.append(over, bool(np.isfinite(collapse))), np.append(resp, collapse)
 

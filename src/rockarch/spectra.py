@@ -113,7 +113,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
             grid = [np.meshgrid(p[idx], ratio, indexing="ij") for idx in rows]
             for idx, (o, m) in zip(rows, run(grid), strict=True):
                 over[idx], resp[idx] = o, m
-            boundary = _refine_boundary(run, p, ratio, over, tol, bar, len(rows))
+            boundary = refine_boundary(run, p, ratio, over, tol, bar, len(rows))
     finally:
         if owned:
             executor.close()
@@ -139,9 +139,14 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     return ds
 
 
-def _refine_boundary(run, p, ratio, over, tol, bar, chunks) -> np.ndarray:
+def refine_boundary(run, p, ratio, over, tol, bar, chunks) -> np.ndarray:
     """Lowest overturning ratio per p: bisection between the last safe value below the
-    first overturning grid cell and that cell (ratio ≤ 1 never moves, so 1 brackets it)."""
+    first overturning grid cell and that cell (ratio ≤ 1 never moves, so 1 brackets it).
+
+    ``run(chunks of (p, ratio) pairs)`` gives, per chunk, a tuple whose first item is the
+    overturned flags; ``over`` is the grid's (p, ratio) map; bisection to ``tol`` (0: the
+    grid cell); ``bar`` a progress bar (tqdm-like), ``chunks`` how many tasks per round.
+    Used by the OAS here and by the per-record IDA scan (:mod:`rockarch.record_scan`)."""
     first = np.where(over.any(axis=1), over.argmax(axis=1), -1)
     has = first >= 0
     hi = np.where(has, ratio[np.maximum(first, 0)], np.nan)
