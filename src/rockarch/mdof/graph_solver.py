@@ -37,7 +37,7 @@ SWEEP_TOL = 1e-3
 NSGS_MAX_SWEEPS = 2000
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def solve3(a, r, out):
     """Solve the 3×3 system a·out = r (Gaussian elimination, partial pivoting; a, r are
     overwritten). Returns False if a is (numerically) singular."""
@@ -160,7 +160,7 @@ def local_solve(w, q, mu, case0, lam, a, r, sol, tol_u, tol_l):
     return -1 - max(best, 0)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def joint_velocity(k, ba, bb, ja, jb, bias, vx, vy, om, u):
     """Relative velocities (3 rows of joint k, bias included) at the bodies' velocities."""
     a = ba[k]
@@ -175,7 +175,7 @@ def joint_velocity(k, ba, bb, ja, jb, bias, vx, vy, om, u):
         u[i] = s
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def apply_impulse(k, ba, bb, ja, jb, d, im, ii, vx, vy, om):
     """Velocities += M⁻¹·J_kᵀ·d (d: impulse increments of the 3 rows of joint k)."""
     a = ba[k]
