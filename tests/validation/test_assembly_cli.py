@@ -123,6 +123,7 @@ def test_bad_input_one_line(tmp_path):
         (["--column", "0.5,1", "--friction", "0"], "--friction must be a finite number > 0"),
         (["--column", "0.5,1", "--friction", "-0.2"], "--friction"),
         (["--column", "0.5,1", "--friction", "inf"], "--friction"),
+        (["--column", "0.5,1", "--friction", "1e20"], "--friction must be at most 1e+06"),
         (["--assembly", str(notjson)], "not JSON"),
         (["--assembly", str(unknown)], "unknown key(s) 'walls'"),
         (["--assembly", str(star)], "self-intersecting"),

@@ -240,3 +240,56 @@ def test_wall_collapses_alike_on_both_solvers():
     (s_b, t_b), (s_g, t_g, f_g) = res[0][:2], (res[1][0], res[1][1], res[1][7])
     assert s_b == 1 and s_g == 1 and f_g == 0
     assert abs(t_b - t_g) <= 2 * h
+
+
+def _on_pedestal(width: float) -> mdof.Assembly:
+    """A block 0.4 × 0.2 m, mu = 0.1, on a rigid pedestal 1 m high whose top, ``width``
+    wide, ends flush with the block's right face (the block slides to -x under +a)."""
+    return bd.from_polygons([[[0, 1], [0.4, 1], [0.4, 1.2], [0, 1.2]]], mu=0.1,
+                            supports=[[[0.4 - width, 0], [0.4, 0], [0.4, 1],
+                                       [0.4 - width, 1]]])
+
+
+@pytest.mark.parametrize("duration", [0.1, 0.15, 0.2])
+def test_block_slides_off_a_pedestal_edge(duration):
+    # a sliding joint's contact runs along the overlap of the two faces (docs/theory.md
+    # §9): on a pedestal as wide as the block it slips as Newmark says while its centroid
+    # stays on the pedestal (slip < B/2 = 0.2 m), and it tips over the edge once the slip
+    # passes B/2 (Newmark: 0.098, 0.221, 0.392 m for the three pulses); on a 2 m wide
+    # pedestal it slips the whole Newmark distance and stays (rel 2e-3: the closed-form
+    # test above)
+    step = motion.step(0.5 * G, duration)
+    slip = newmark_slip(0.5 * G, 0.1, duration)
+    narrow = mdof.simulate(_on_pedestal(0.4), step, t_free=2.0)
+    wide = mdof.simulate(_on_pedestal(2.0), step, t_free=2.0)
+    assert narrow.lcp_failures == 0 and wide.lcp_failures == 0
+    assert not wide.overturned and wide.max_slip == pytest.approx(slip, rel=2e-3)
+    assert narrow.overturned == (slip > 0.2)
+    if slip < 0.2:
+        assert narrow.max_slip == pytest.approx(slip, rel=2e-3)
+
+
+def test_sliding_joint_contact_is_the_overlap_of_the_faces():
+    # the block of _on_pedestal(0.4) shifted by -0.3 m, flat on the pedestal: the joint's
+    # contact is the overlap [0, 0.1] of the two faces (the pedestal's corner and the
+    # block's), so the rows' lever arms from the block's centroid (x = -0.1) are 0.1 and
+    # 0.2 m, the gaps 0 and the offset the shift; shifted by -0.5 m the faces no longer
+    # overlap and both corners are open by OFF_GAP (exact arithmetic on these values)
+    from rockarch.mdof import graph_stepper as gs
+    from rockarch.mdof.kernel_data import graph_model
+
+    m = graph_model(_on_pedestal(0.4))
+    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    for shift in (-0.3, -0.5):
+        x, y, ph = m.c0[:, 0] + shift, m.c0[:, 1].copy(), np.zeros(1)
+        off = gs.geometry(1, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu,
+                          ws.gap, ws.ja, ws.jb)
+        jrows = ws.ja if m.ba[0] == 0 else ws.jb
+        if shift == -0.3:
+            assert off == 0
+            assert np.allclose(ws.gap[0, :2], 0.0, atol=1e-12)
+            assert abs(ws.gap[0, 2]) == pytest.approx(0.3)
+            assert sorted(abs(jrows[:2, 2])) == pytest.approx([0.1, 0.2])
+            assert np.allclose(abs(jrows[:2, 1]), 1.0) and np.allclose(jrows[:2, 0], 0.0)
+        else:
+            assert off == 1 and np.all(ws.gap[0, :2] == gs.OFF_GAP)

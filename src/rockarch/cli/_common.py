@@ -16,7 +16,6 @@ from typing import Any
 import numpy as np
 import typer
 
-from rockarch._validate import positive
 from rockarch.arch.geometry import SHAPES
 from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.motion import SIGNALS, GroundMotion, pulse
@@ -253,7 +252,9 @@ def mdof_structure(params: dict) -> dict:
     among a command's ``params`` (its ``locals()``); absent options are left out."""
     kw = {k: params.get(k) for k in MDOF_STRUCTURE_KEYS if params.get(k) is not None}
     if "friction" in kw:
-        positive("--friction", kw["friction"])
+        from rockarch.mdof.builders import friction_value  # scipy: not at CLI start-up
+
+        friction_value(kw["friction"], "--friction")
     if "column" in kw:
         kw["column"] = column_blocks(kw["column"])
     return kw  # --wall and --block stay text: rockarch.systems parses them

@@ -32,10 +32,18 @@ from rockarch.mdof import polygons as pg
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.statics import LAMBDA_CAP, collapse, limit_analysis
 
+#: Largest friction coefficient accepted: above it the limit-analysis LP loses its accuracy
+#: (μ = 1e10 gave an ap,min 6000 times too low), and no real joint comes near it.
+MU_MAX = 1e6
 
-def friction_value(mu) -> float:
-    """A friction coefficient: a finite number > 0 (ValueError otherwise)."""
-    return positive("friction coefficient", mu)
+
+def friction_value(mu, name: str = "friction coefficient") -> float:
+    """A friction coefficient: a finite number in (0, ``MU_MAX``] (ValueError otherwise)."""
+    mu = positive(name, mu)
+    if mu > MU_MAX:
+        raise ValueError(f"{name} must be at most {MU_MAX:g}, got {mu:g} (for joints that "
+                         "never slide, give no friction)")
+    return mu
 
 
 def _graph_checks(nb_: int, body_a, body_b, names) -> None:
@@ -198,7 +206,8 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
                                      "-1 the ground)")
             joints += _given_contact(polys, sup, i, j, m, tol)
     return assemble(name=name, kind=kind, mass=mass, inertia=inertia, centroid=centroid,
-                    polygons=polys, joints=joints, mu=mu, g=g, names=names, info=info)
+                    polygons=polys, joints=joints, mu=mu, g=g, names=names,
+                    info={**(info or {}), "supports": tuple(sup)})
 
 
 def _given_contact(polys, sup, i, j, m, tol) -> list:

@@ -16,7 +16,7 @@ from rockarch.mdof import kinematics as kin
 from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
 from rockarch.mdof.graph_solver import NSGS_TOL
-from rockarch.mdof.graph_stepper import contact_step, make_work, project
+from rockarch.mdof.graph_stepper import OFF_GAP, contact_step, make_work, project
 from rockarch.mdof.rest_solver import make_rest_work
 
 
@@ -41,6 +41,21 @@ def _sliding(m, ws, vx, vy, om, tol_u, free_t):
             n_sl += 1
             free_t[k] = True
     return n_sl
+
+
+@nb.njit(cache=True)
+def _fallen(m, gap):
+    """True if some block has slid off everything that carried it: every joint of the block
+    has faces that no longer overlap (a block falling free: collapse)."""
+    for j in range(m.mass.shape[0]):
+        off = True
+        for p in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
+            if gap[m.inc_joint[p], 0] < OFF_GAP:
+                off = False
+                break
+        if off:
+            return True
+    return False
 
 
 @nb.njit(cache=True)
@@ -71,6 +86,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     anchor = np.zeros(nj)
     gmid = np.zeros((nj, 3))
     ck = kin.cumint_knots(tk, ak)
+    can_slide = not np.all(np.isinf(m.mu))
     wmax = 0.0
     for j in range(nbod):
         wmax = max(wmax, ws.im[j], ws.ii[j] * (m.thick_min * scale) ** 2)
@@ -127,7 +143,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             kin.record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             out_e[n_rec] = kin.energy(mass, ws.ii, vx, vy, om, y, cy0, g)
             n_rec += 1
-        if rho > 0.5 * math.pi:
+        if rho > 0.5 * math.pi or (can_slide and _fallen(m, gmid)):
             status = 1
             t_col = t
             break

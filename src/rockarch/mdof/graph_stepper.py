@@ -26,6 +26,7 @@ import numpy as np
 
 from rockarch.mdof.chain_solver import box_qp
 from rockarch.mdof.graph_solver import apply_impulse, joint_velocity, nsgs, solve3
+from rockarch.mdof.kernel_data import SLIDE_TOL
 from rockarch.mdof.rest_solver import note_velocity, rest_solve
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
@@ -66,24 +67,142 @@ def _rows(ja, jb, r, a, dx, dy, pbx, pby, obx, oby, x, y):
         ja[r, 2] = -(oax * dy - oay * dx)
 
 
+@nb.njit(cache=True, inline="always")
+def _normal(k, a, cs, sn, n0):
+    """Joint k's normal, turned with body a (the ground's stays)."""
+    if a >= 0:
+        return cs[a] * n0[k, 0] - sn[a] * n0[k, 1], sn[a] * n0[k, 0] + cs[a] * n0[k, 1]
+    return n0[k, 0], n0[k, 1]
+
+
+@nb.njit(cache=True, inline="always")
+def _ground_rows(k, a, b, ja, jb):
+    """Zero joint k's rows of the ground's side (the ground does not move)."""
+    for i in range(3):
+        for j in range(3):
+            if a < 0:
+                ja[3 * k + i, j] = 0.0
+            if b < 0:
+                jb[3 * k + i, j] = 0.0
+
+
+#: Gap given to both corners of a joint whose faces no longer overlap [m] (open for good:
+#: far above any contact tolerance, finite so that the solvers' arithmetic stays finite).
+OFF_GAP = 1e6
+
+
+@nb.njit(cache=True, inline="always")
+def _overlap_end(r, inside, a, b, x, y, nx, ny, mx, my, bx, by, obx, oby, fax, fay, ra, rb,
+                 cs, sn, gap, ja, jb):
+    """One end of a sliding joint's overlap (row r = corner c): b's face end (bx, by; arm
+    ob) against a's face line with a's normal n if ``inside``, else a's face end (offset
+    fax, fay) against b's face line with b's normal m. The lines are taken through the
+    joint's reference corner c on each body (near the contact: the ground's face ends are
+    far). Returns the contact point and its arm from b's centroid."""
+    k = r // 3
+    c = r - 3 * k
+    if inside:
+        lx, ly, _, _ = _point(a, x, y, cs, sn, ra[k, c, 0], ra[k, c, 1])
+        gap[k, c] = nx * (bx - lx) + ny * (by - ly)
+        _rows(ja, jb, r, a, nx, ny, bx, by, obx, oby, x, y)
+        return bx, by, obx, oby
+    lx, ly, _, _ = _point(b, x, y, cs, sn, rb[k, c, 0], rb[k, c, 1])
+    qx, qy, oqx, oqy = _point(a, x, y, cs, sn, fax, fay)
+    gap[k, c] = mx * (qx - lx) + my * (qy - ly)
+    _rows(jb, ja, r, b, mx, my, qx, qy, oqx, oqy, x, y)
+    if b < 0:
+        return qx, qy, 0.0, 0.0
+    return qx, qy, qx - x[b], qy - y[b]
+
+
 @nb.njit(cache=True)
-def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
+def _sliding_joint(k, a, b, x, y, cs, sn, ra, rb, fa, fb, n0, nx, ny, gap, ja, jb):
+    """Corner gaps and rows of a joint that may slide (μ finite, docs/theory.md §9): its
+    contact runs along the overlap of the two faces. Each end of the overlap is b's face
+    end against a's face line while that end lies on a's face, else a's face end against
+    b's face line (the exact gradient either way). Faces that no longer overlap get
+    ``OFF_GAP`` at both corners. Returns the contact points with their arms from b's
+    centroid (x0, y0, ox0, oy0, x1, ...) and whether the joint is off."""
+    a0x, a0y, _, _ = _point(a, x, y, cs, sn, fa[k, 0, 0], fa[k, 0, 1])
+    a1x, a1y, _, _ = _point(a, x, y, cs, sn, fa[k, 1, 0], fa[k, 1, 1])
+    b0x, b0y, ob0x, ob0y = _point(b, x, y, cs, sn, fb[k, 0, 0], fb[k, 0, 1])
+    b1x, b1y, ob1x, ob1y = _point(b, x, y, cs, sn, fb[k, 1, 0], fb[k, 1, 1])
+    ex = a0x - a1x  # along a's face, from its corner-1 end to its corner-0 end
+    ey = a0y - a1y
+    la = math.sqrt(ex * ex + ey * ey)
+    ex /= la
+    ey /= la
+    u0 = ex * (b0x - a1x) + ey * (b0y - a1y)  # b's face ends on a's face, which spans [0, la]
+    u1 = ex * (b1x - a1x) + ey * (b1y - a1y)
+    # b's end stays the contact until it is past a's end by SLIDE_TOL of b's face: drift-sized
+    # slips keep the corners of the joint as built (their lever arms change by < 0.1 %)
+    tol = SLIDE_TOL * math.sqrt((b0x - b1x) ** 2 + (b0y - b1y) ** 2)
+    if max(0.0, u1) >= min(la, u0):
+        gap[k, 0] = OFF_GAP
+        gap[k, 1] = OFF_GAP
+        _rows(ja, jb, 3 * k, a, nx, ny, b0x, b0y, ob0x, ob0y, x, y)
+        _rows(ja, jb, 3 * k + 1, a, nx, ny, b1x, b1y, ob1x, ob1y, x, y)
+        return b0x, b0y, ob0x, ob0y, b1x, b1y, ob1x, ob1y, True
+    if b >= 0:  # b's face normal, pointing into a
+        mx = -(cs[b] * n0[k, 0] - sn[b] * n0[k, 1])
+        my = -(sn[b] * n0[k, 0] + cs[b] * n0[k, 1])
+    else:
+        mx = -n0[k, 0]
+        my = -n0[k, 1]
+    p0x, p0y, o0x, o0y = _overlap_end(3 * k, u0 <= la + tol, a, b, x, y, nx, ny, mx, my, b0x,
+                                      b0y, ob0x, ob0y, fa[k, 0, 0], fa[k, 0, 1], ra, rb, cs,
+                                      sn, gap, ja, jb)
+    p1x, p1y, o1x, o1y = _overlap_end(3 * k + 1, u1 >= -tol, a, b, x, y, nx, ny, mx, my, b1x,
+                                      b1y, ob1x, ob1y, fa[k, 1, 0], fa[k, 1, 1], ra, rb, cs,
+                                      sn, gap, ja, jb)
+    return p0x, p0y, o0x, o0y, p1x, p1y, o1x, o1y, False
+
+
+@nb.njit(cache=True)
+def _slid_joints(nj, ba, bb, x, y, cs, sn, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
+    """The joints of :func:`geometry` that slipped more than ``ftol``: corners at the ends
+    of the faces' overlap (:func:`_sliding_joint`), the tangential row at the one in
+    contact. Returns the number of joints whose faces no longer overlap."""
+    n_off = 0
+    for k in range(nj):
+        if math.isinf(mu[k]) or abs(gap[k, 2]) <= ftol[k]:
+            continue
+        a = ba[k]
+        b = bb[k]
+        nx, ny = _normal(k, a, cs, sn, n0)
+        p0x, p0y, o0x, o0y, p1x, p1y, o1x, o1y, off = _sliding_joint(
+            k, a, b, x, y, cs, sn, ra, rb, fa, fb, n0, nx, ny, gap, ja, jb)
+        n_off += off
+        best = 1 if gap[k, 1] < gap[k, 0] else 0
+        pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, best, 0], ra[k, best, 1])
+        pbx, pby, _, _ = _point(b, x, y, cs, sn, rb[k, best, 0], rb[k, best, 1])
+        gap[k, 2] = -ny * (pbx - pax) + nx * (pby - pay)
+        px, py, obx, oby = (p1x, p1y, o1x, o1y) if best == 1 else (p0x, p0y, o0x, o0y)
+        _rows(ja, jb, 3 * k + 2, a, -ny, nx, px, py, obx, oby, x, y)
+        _ground_rows(k, a, b, ja, jb)
+    return n_off
+
+
+@nb.njit(cache=True)
+def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
     Jacobian rows (3·nj, 3) w.r.t. bodies a and b; the rows are the exact gradients of the
-    gaps (lever arms from each centroid to b's corner)."""
+    gaps (lever arms from each centroid to b's corner). A joint with finite μ takes its
+    corners at the ends of the faces' overlap (:func:`_sliding_joint`), its tangential row
+    at the one in contact; its offset stays that of the reference corners (the slip). While
+    it slips less than ``ftol`` (SLIDE_TOL of its face) it keeps the corners as built: the
+    overlap's ends are within ``ftol`` of them, and a corner's gap measured from either
+    face is the same to first order (the arithmetic and the cost of a no-slip joint).
+    Returns the number of joints whose faces no longer overlap."""
     cs = np.cos(ph)
     sn = np.sin(ph)
     for k in range(nj):
         a = ba[k]
         b = bb[k]
-        if a >= 0:
-            nx = cs[a] * n0[k, 0] - sn[a] * n0[k, 1]
-            ny = sn[a] * n0[k, 0] + cs[a] * n0[k, 1]
-        else:
-            nx = n0[k, 0]
-            ny = n0[k, 1]
+        nx, ny = _normal(k, a, cs, sn, n0)
         tx = -ny
         ty = nx
+        # the corners as built (every joint; redone below for one that slid)
         best = 0
         for cc in range(2):
             pax, pay, _, _ = _point(a, x, y, cs, sn, ra[k, cc, 0], ra[k, cc, 1])
@@ -98,16 +217,13 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, n0, gap, ja, jb):
         pbx, pby, obx, oby = _point(b, x, y, cs, sn, rb[k, best, 0], rb[k, best, 1])
         gap[k, 2] = tx * (pbx - pax) + ty * (pby - pay)
         _rows(ja, jb, 3 * k + 2, a, tx, ty, pbx, pby, obx, oby, x, y)
-        if a < 0:
-            for i in range(3):
-                ja[3 * k + i, 0] = 0.0
-                ja[3 * k + i, 1] = 0.0
-                ja[3 * k + i, 2] = 0.0
-        if b < 0:
-            for i in range(3):
-                jb[3 * k + i, 0] = 0.0
-                jb[3 * k + i, 1] = 0.0
-                jb[3 * k + i, 2] = 0.0
+        _ground_rows(k, a, b, ja, jb)
+    # the joints that slid, in a second pass: the loop above stays that of a no-slip joint
+    for k in range(nj):
+        if not math.isinf(mu[k]) and abs(gap[k, 2]) > ftol[k]:
+            return _slid_joints(nj, ba, bb, x, y, cs, sn, ra, rb, fa, fb, ftol, n0, mu, gap,
+                                ja, jb)
+    return 0
 
 
 @nb.njit(cache=True)
@@ -218,7 +334,8 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws, rw):
     (:func:`rockarch.mdof.rest_solver.rest_solve`: returns 0) and else Gauss–Seidel sweeps.
     Returns the solver's iteration count (negative: failed)."""
     nj = m.n0.shape[0]
-    geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, m.n0, ws.gap, ws.ja, ws.jb)
+    geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
+             ws.ja, ws.jb)
     for k in range(nj):
         for c in range(3):
             r = 3 * k + c
@@ -258,7 +375,8 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws):
     open), whose anchor it becomes."""
     nj = m.n0.shape[0]
     nbod = m.mass.shape[0]
-    geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, m.n0, ws.gap, ws.ja, ws.jb)
+    geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
+             ws.ja, ws.jb)
     joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
     for k in range(nj):
         if free_t[k]:
@@ -308,6 +426,9 @@ class Work(NamedTuple):
 
     ra: np.ndarray
     rb: np.ndarray
+    fa: np.ndarray
+    fb: np.ndarray
+    ftol: np.ndarray
     im: np.ndarray
     ii: np.ndarray
     gap: np.ndarray
@@ -334,7 +455,9 @@ def make_work(m, scale, lam, case):
     nj = m.n0.shape[0]
     n = 3 * nj
     kd = m.kd if m.banded else 0
-    return Work(m.ra * scale, m.rb * scale, 1.0 / m.mass, 1.0 / (m.inertia * scale * scale),
+    return Work(m.ra * scale, m.rb * scale, m.fa * scale, m.fb * scale, m.ftol * scale,
+                1.0 / m.mass,
+                1.0 / (m.inertia * scale * scale),
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
                 np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
                 np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),

@@ -15,6 +15,10 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from rockarch.mdof.assembly import Assembly
 
+#: The fraction of a face a joint's contact end may pass the other face's end before the
+#: overlap's end moves to it (docs/theory.md §9; :mod:`rockarch.mdof.graph_stepper`).
+SLIDE_TOL = 1e-3
+
 
 class ChainModel(NamedTuple):
     """A chain assembly for :mod:`rockarch.mdof.chain_stepper` (unit scale)."""
@@ -59,6 +63,9 @@ class GraphModel(NamedTuple):
     rb: np.ndarray  # (nj, 2, 2) corners relative to body b (absolute for the ground)
     n0: np.ndarray  # (nj, 2) reference normals (turn with body a)
     mu: np.ndarray  # (nj,) friction coefficients (inf: no sliding)
+    fa: np.ndarray  # (nj, 2, 2) ends of body a's face on the corner 0 / 1 side (as ra)
+    fb: np.ndarray  # (nj, 2, 2) ends of body b's face (as rb)
+    ftol: np.ndarray  # (nj,) slip below which a sliding joint keeps its corners as built
     banded: bool  # exact banded contact solve (else rest path, Gauss–Seidel)
     kd: int  # half-bandwidth of W in this joint order
     inc_ptr: np.ndarray  # (nb + 1,) body j takes part in joints inc_joint[inc_ptr[j]:inc_ptr[j+1]]
@@ -132,6 +139,41 @@ def body_order(assembly: Assembly) -> tuple[np.ndarray, int]:
     return best
 
 
+#: Half-length of the ground's face [m]: the ground is a plane (its ends are never reached).
+GROUND_FACE = 1e6
+
+
+def face_ends(assembly: Assembly, body: np.ndarray, corners: np.ndarray,
+              normal: np.ndarray) -> np.ndarray:
+    """The ends of every joint's face on ``body``'s side (nj, 2, 2; end c on corner c's
+    side): the extreme vertices on the joint line of the body's outline (of the support's,
+    for a support given to :func:`rockarch.mdof.builders.from_polygons`), along which a
+    sliding joint's contact may run (docs/theory.md §9). The ground y = 0 is a plane
+    (±``GROUND_FACE``); any other support's face ends at the joint's corners."""
+    outlines: dict[int, list] = {}
+    for i, p in enumerate(assembly.polygons):
+        outlines.setdefault(assembly.body_of_polygon(i), []).append(np.asarray(p, float))
+    supports = [np.asarray(p, float) for p in assembly.info.get("supports", ())]
+    ends = corners.copy()
+    for k in range(corners.shape[0]):
+        c0, c1 = corners[k]
+        length = float(np.hypot(*(c1 - c0)))
+        t = (c1 - c0) / length
+        tol = 1e-6 * max(length, float(np.abs(corners).max()))
+        lo, hi = 0.0, length
+        if body[k] < 0 and abs(c0[1]) <= tol and abs(c1[1]) <= tol:
+            lo, hi = -GROUND_FACE, length + GROUND_FACE
+        else:
+            for v in (outlines.get(int(body[k]), []) if body[k] >= 0 else supports):
+                on = np.abs((v - c0) @ normal[k]) <= tol
+                u = (v[on] - c0) @ t
+                if on.sum() >= 2 and u.min() <= tol and u.max() >= length - tol:
+                    lo, hi = min(lo, float(u.min())), max(hi, float(u.max()))
+        ends[k, 0] = c0 + lo * t if lo < -tol else c0  # a face end at the corner: the corner
+        ends[k, 1] = c0 + hi * t if hi > length + tol else c1
+    return ends
+
+
 def graph_model(assembly: Assembly) -> GraphModel:
     """The general stepper's input: the contact graph (body_a, body_b) and mu per joint."""
     order, kd = joint_order(assembly)
@@ -143,13 +185,18 @@ def graph_model(assembly: Assembly) -> GraphModel:
                  + [(int(b), k, 1) for k, b in enumerate(bb) if b >= 0])
     ptr = np.searchsorted([i[0] for i in inc], np.arange(assembly.n_blocks + 1))
 
-    def rel(bodies):
-        return np.ascontiguousarray(corners - np.where(bodies[:, None, None] >= 0,
-                                                       cen[bodies][:, None, :], 0.0))
+    normal = _f(np.asarray(assembly.normal)[order])
 
-    return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb, rel(ba),
-                      rel(bb), _f(np.asarray(assembly.normal)[order]),
-                      _f(np.asarray(assembly.mu)[order]), kd <= KD_MAX, kd,
+    def rel(bodies, pts):
+        return np.ascontiguousarray(pts - np.where(bodies[:, None, None] >= 0,
+                                                   cen[bodies][:, None, :], 0.0))
+
+    fa, fb = face_ends(assembly, ba, corners, normal), face_ends(assembly, bb, corners, normal)
+    span = np.hypot(*(corners[:, 1] - corners[:, 0]).T)
+    return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb,
+                      rel(ba, corners), rel(bb, corners), normal,
+                      _f(np.asarray(assembly.mu)[order]), rel(ba, fa), rel(bb, fb),
+                      _f(SLIDE_TOL * span), kd <= KD_MAX, kd,
                       np.ascontiguousarray(ptr, dtype=np.int64),
                       np.array([i[1] for i in inc], dtype=np.int64),
                       np.array([i[2] for i in inc], dtype=np.int64), order,
