@@ -1,7 +1,8 @@
 """pymunk (Chipmunk 2-D) as an independent engine for rockarch's assemblies (tests only).
 
 The same blocks (mass, polar moment, outline) as pymunk bodies; the ground and every support
-(joint with body -1) as static shapes; the ground acceleration a_g(t) applied, in the ground's
+(joint with body -1: the support's own polygon where the assembly has it, else a block
+behind the joint's face) as static shapes; the ground acceleration a_g(t) applied, in the ground's
 frame, as a tilted gravity (-a_g(t), -g). Curved voussoirs (non-convex outlines) are split
 into convex strips of one body. Friction: pymunk multiplies the two shapes' coefficients, so
 every shape gets sqrt(mu) (no sliding: mu = NO_SLIP). A curved voussoir's contact outline
@@ -69,8 +70,14 @@ def build(assembly, *, mu: float | None = None, dt: float = 2e-4, iterations: in
                                                  (100 * size, 0.0), (-100 * size, 0.0)])
         ground.friction = fr
         space.add(ground)
-    for k in range(a.n_joints):  # supports: a static block behind every other ground face
-        if a.body_a[k] >= 0 and a.body_b[k] >= 0:
+    for poly in a.info.get("supports", ()):  # supports given as polygons: themselves
+        s = pymunk.Poly(space.static_body,
+                        [tuple(v) for v in _rounded(np.asarray(poly, float), ROUND * size)],
+                        radius=ROUND * size)
+        s.friction = fr
+        space.add(s)
+    for k in range(a.n_joints):  # else a static block behind every other ground face
+        if (a.body_a[k] >= 0 and a.body_b[k] >= 0) or a.info.get("supports"):
             continue
         p0, p1 = a.corners[k]
         if abs(p0[1]) < 1e-9 * size and abs(p1[1]) < 1e-9 * size:
