@@ -27,6 +27,7 @@ from matplotlib.patches import Polygon
 from PIL import Image
 from tqdm import tqdm
 
+from rockarch.output.collapse_plots import draw_supports
 from rockarch.output.figures import new_figure
 from rockarch.output.paths import atomic_write
 
@@ -151,8 +152,10 @@ class _Renderer:
         self.fig = fig = new_figure((10, 4.1), dpi=DPI)
         ax, axg = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
         rest = _outlines(resp, resp.q[0])
-        self._structure_axes(ax, rest, _outlines(
+        sup = [np.asarray(p, float) for p in resp.assembly.info.get("supports", ())]
+        self._structure_axes(ax, rest + sup, _outlines(
             resp, _config(resp, int(plan.indices[-1]), plan.final_magnify)))
+        draw_supports(ax, resp.assembly)
         self._ground_axes(axg)
         fig.subplots_adjust(left=0.07, right=0.98, top=0.9, bottom=0.25, wspace=0.25)
         # add_artist, not add_patch: the limits are set above, and add_patch's data-limit

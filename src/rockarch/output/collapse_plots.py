@@ -25,6 +25,14 @@ def _moved(poly: np.ndarray, centre: np.ndarray, vel: np.ndarray, s: float) -> n
     return centre + np.array([u, v]) + rel @ np.array([[c, sn], [-sn, c]])
 
 
+def draw_supports(ax, assembly: Assembly, **kw) -> None:
+    """The supports given as polygons (``assembly.info["supports"]``: rigid, moving with
+    the ground), hatched."""
+    for poly in assembly.info.get("supports", ()):
+        ax.add_patch(Polygon(np.asarray(poly, float), closed=True, fc="0.75", ec="0.3",
+                             hatch="///", lw=0.6, **kw))
+
+
 def collapse_figure(assembly: Assembly, mech: Collapse | None = None):
     """Figure of the collapse mechanism (default: :func:`statics.collapse` of the
     assembly with its own friction)."""
@@ -37,6 +45,7 @@ def collapse_figure(assembly: Assembly, mech: Collapse | None = None):
     span = float(np.max(np.abs(vel[:, 2]))) * a.size
     s = 0.1 * a.size / max(reach, span, 1e-12)
     moving = mech.moving
+    draw_supports(ax, a)
     for ip, poly in enumerate(a.polygons):
         i = a.body_of_polygon(ip)
         poly = np.asarray(poly, float)
