@@ -134,3 +134,30 @@ def test_mdof_time_history_figure(collapse, tmp_path):
                               "--plot", str(tmp_path / "h.png")])
     assert res.exit_code == 0, res.output
     assert (tmp_path / "h.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_sliding_joint_is_drawn_blue():
+    # a block (mu = 0.1) sliding on a wide pedestal under a 0.3 g step of 0.3 s (Newmark:
+    # 0.265 m): while it slides, its joint is drawn in the sliding colour and counted in the
+    # title, from the first frame after the start to its stop at t = 0.3 + v/(mu g) = 0.9 s
+    # (where the run ends, at rest)
+    from rockarch.mdof import builders as bd
+    from rockarch.mdof import simulate as simulate_mdof
+    from rockarch.motion import step
+
+    a = bd.from_polygons([[[0, 1], [0.4, 1], [0.4, 1.2], [0, 1.2]]], mu=0.1,
+                         supports=[[[-2, 0], [2, 0], [2, 1], [-2, 1]]])
+    r = simulate_mdof(a, step(0.3 * 9.81, 0.3), t_free=1.0)
+    plan = animation.plan_frames(r, fps=10, max_frames=50, magnify=1.0)
+    rend = animation._Renderer(r, plan)
+    seen = []
+    for i in plan.indices:
+        rend.frame(int(i), 1.0, False)
+        line = rend.joint_lines[0]
+        seen.append((float(r.t[i]), line.get_visible() and line.get_color() == "tab:blue",
+                     rend.title.get_text()))
+    sliding = [t for t, blue, _ in seen if blue]
+    assert sliding and min(sliding) < 0.15 and 0.8 < max(sliding) < 0.95
+    assert any("sliding: 1" in title for _, _, title in seen)
+    assert not seen[0][1] and "sliding: 0" in seen[0][2]
+    assert r.max_slip == pytest.approx(0.265, rel=2e-3)

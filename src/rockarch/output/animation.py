@@ -38,6 +38,11 @@ if TYPE_CHECKING:
 STATE_STYLE = {1: ("tab:red", "rotating about corner 0 (arch: intrados)"),
                2: ("tab:orange", "rotating about corner 1 (arch: extrados)"),
                3: ("magenta", "both corners open")}
+#: Colour and legend text of a joint sliding (friction) between two frames.
+SLIDE_STYLE = ("tab:blue", "sliding")
+#: A joint slides in a frame if its tangential offset changed by more than this fraction of
+#: the structure's size since the previous frame (and it is not open at both corners).
+SLIDE_VISIBLE = 1e-4
 #: Largest displacement of the held last frame, as a fraction of the structure's size.
 FINAL_VISIBLE = 0.1
 #: How long the last frame is held [s].
@@ -90,6 +95,30 @@ def _joint_segment(resp: MDOFResponse, q: np.ndarray, k: int) -> np.ndarray:
                     axis=1)
 
 
+def _offsets(resp: MDOFResponse, q: np.ndarray) -> np.ndarray:
+    """Tangential offset of every joint with friction in configuration q (nj,): body b's
+    corner 0 from body a's along a's face (docs/theory.md §9); 0 for joints that never
+    slide."""
+    a = resp.assembly
+    out = np.zeros(a.n_joints)
+    for k in np.flatnonzero(np.isfinite(a.mu)):
+        pts, tan = [], None
+        for side, body in enumerate((int(a.body_a[k]), int(a.body_b[k]))):
+            p = a.corners[k, 0] * resp.scale
+            c, s = 1.0, 0.0
+            if body >= 0:
+                x, y, ph = q[body]
+                c, s = math.cos(ph), math.sin(ph)
+                rel = p - a.centroid[body] * resp.scale
+                p = np.array([x + c * rel[0] - s * rel[1], y + s * rel[0] + c * rel[1]])
+            if side == 0:
+                n = a.normal[k]
+                tan = np.array([-(s * n[0] + c * n[1]), c * n[0] - s * n[1]])
+            pts.append(p)
+        out[k] = float(tan @ (pts[1] - pts[0]))
+    return out
+
+
 def _config(resp: MDOFResponse, i: int, magnify: float) -> np.ndarray:
     q0 = resp.q[0]
     return q0 + magnify * (resp.q[i] - q0)
@@ -119,8 +148,11 @@ def plan_frames(resp: MDOFResponse, fps: int, max_frames: int, magnify: float) -
     return FramePlan(idx, np.maximum(np.round(dur, -1), 20.0), magnify, final)
 
 
-def _title(resp: MDOFResponse, i: int, n_open: int, magnify: float, final: bool) -> str:
+def _title(resp: MDOFResponse, i: int, n_open: int, magnify: float, final: bool,
+           n_slide: int | None = None) -> str:
     text = f"t = {resp.t[i]:.2f} s, open joints: {n_open}"
+    if n_slide is not None:
+        text += f", sliding: {n_slide}"
     if final:
         if resp.overturned:
             text = (f"COLLAPSE at t = {resp.t_overturn:.3f} s (overturning criterion), "
@@ -153,8 +185,9 @@ class _Renderer:
         ax, axg = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
         rest = _outlines(resp, resp.q[0])
         sup = [np.asarray(p, float) for p in resp.assembly.info.get("supports", ())]
+        self.friction = bool(np.isfinite(resp.assembly.mu).any())
         self._structure_axes(ax, rest + sup, _outlines(
-            resp, _config(resp, int(plan.indices[-1]), plan.final_magnify)))
+            resp, _config(resp, int(plan.indices[-1]), plan.final_magnify)), self.friction)
         draw_supports(ax, resp.assembly)
         self._ground_axes(axg)
         fig.subplots_adjust(left=0.07, right=0.98, top=0.9, bottom=0.25, wspace=0.25)
@@ -165,14 +198,18 @@ class _Renderer:
         self.joint_lines = [ax.plot([], [], lw=3, solid_capstyle="round", animated=True)[0]
                             for _ in range(resp.assembly.n_joints)]
         self.marker = axg.axvline(0.0, color="k", lw=1, animated=True)
+        self.last_offsets = _offsets(resp, resp.q[0])
+        self.slide_tol = SLIDE_VISIBLE * float(np.ptp(np.concatenate(rest), axis=0).max())
         self.title = fig.suptitle("", fontsize=11, animated=True)
         fig.canvas.draw()
         self.background = fig.canvas.copy_from_bbox(fig.bbox)
 
     @staticmethod
-    def _structure_axes(ax, rest: list[np.ndarray], last: list[np.ndarray]) -> None:
+    def _structure_axes(ax, rest: list[np.ndarray], last: list[np.ndarray],
+                        friction: bool) -> None:
         """Limits holding the rest and the last (magnified) configuration, ground line,
-        labels, the outline at rest, the legend of the joint colours."""
+        labels, the outline at rest, the legend of the joint colours (sliding: with
+        friction)."""
         pts = np.concatenate([*rest, *last])
         span = float(np.ptp(pts, axis=0).max())
         lo, hi = pts.min(axis=0) - 0.15 * span, pts.max(axis=0) + 0.15 * span
@@ -186,7 +223,8 @@ class _Renderer:
                                          edgecolors="0.65", linestyles="--", linewidths=0.5),
                           autolim=False)
         ax.legend(handles=[Line2D([], [], color=c, lw=3, label=f"joint {lab}")
-                           for c, lab in STATE_STYLE.values()]
+                           for c, lab in [*STATE_STYLE.values(),
+                                          *([SLIDE_STYLE] if friction else [])]]
                   + [Line2D([], [], color="0.65", ls="--", lw=0.8, label="at rest")],
                   loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=7,
                   frameon=False)
@@ -207,17 +245,22 @@ class _Renderer:
         q = _config(resp, i, magnify)
         for patch, poly in zip(self.patches, _outlines(resp, q), strict=True):
             patch.set_xy(poly)
-        n_open = 0
+        n_open = n_slide = 0
+        offsets = _offsets(resp, resp.q[i]) if self.friction else self.last_offsets
         for k, line in enumerate(self.joint_lines):
             st = int(resp.joints[i, k])
-            if st:
+            slides = st != 3 and abs(offsets[k] - self.last_offsets[k]) > self.slide_tol
+            if st or slides:
                 seg = _joint_segment(resp, q, k)
                 line.set_data(seg[:, 0], seg[:, 1])
-                line.set_color(STATE_STYLE[st][0])
-                n_open += 1
-            line.set_visible(bool(st))
+                line.set_color(SLIDE_STYLE[0] if slides else STATE_STYLE[st][0])
+            n_open += bool(st)
+            n_slide += slides
+            line.set_visible(bool(st) or slides)
+        self.last_offsets = offsets
         self.marker.set_xdata([resp.t[i], resp.t[i]])
-        self.title.set_text(_title(resp, i, n_open, magnify, final))
+        self.title.set_text(_title(resp, i, n_open, magnify, final,
+                                   n_slide if self.friction else None))
         for artist in [*self.patches, *self.joint_lines, self.marker, self.title]:
             self.fig.draw_artist(artist)
         return np.asarray(canvas.buffer_rgba())[..., :3].copy()
@@ -226,8 +269,8 @@ class _Renderer:
 def _palette(first: np.ndarray) -> Image.Image:
     """One 256-colour palette for every frame: the first frame's colours plus the joint
     colours (which it may not show yet)."""
-    swatch = np.array([[int(c * 255) for c in to_rgb(col)] for col, _ in STATE_STYLE.values()],
-                      dtype=np.uint8)
+    swatch = np.array([[int(c * 255) for c in to_rgb(col)]
+                       for col, _ in [*STATE_STYLE.values(), SLIDE_STYLE]], dtype=np.uint8)
     img = first.copy()
     img[:swatch.shape[0], :1] = swatch[:, None, :]
     return Image.fromarray(img).quantize(256, method=Image.Quantize.FASTOCTREE)
@@ -238,7 +281,8 @@ def animate(resp: MDOFResponse, path: str | Path, *, fps: int = 20, max_frames: 
     """Write a GIF of an MDOF response (atomically).
 
     Left: the blocks (displacements in the frame moving with the ground, optionally
-    magnified), open joints coloured by their state (legend). Right: a_g(t) with the
+    magnified), open joints coloured by their state and joints sliding since the previous
+    frame in blue (legend). Right: a_g(t) with the
     current time. Frames: :func:`plan_frames`. ``progress``: a progress bar on stderr
     (default: when stderr is a terminal).
     """
