@@ -134,8 +134,8 @@ def _sliding_joint(k, a, b, x, y, cs, sn, ra, rb, fa, fb, n0, nx, ny, gap, ja, j
     ey /= la
     u0 = ex * (b0x - a1x) + ey * (b0y - a1y)  # b's face ends on a's face, which spans [0, la]
     u1 = ex * (b1x - a1x) + ey * (b1y - a1y)
-    # b's end stays the contact until it is past a's end by SLIDE_TOL of b's face: drift-sized
-    # slips keep the corners of the joint as built (their lever arms change by < 0.1 %)
+    # b's end stays the contact until it is past a's end by SLIDE_TOL of b's face (ends that
+    # coincide as built stay b's: no switching on round-off)
     tol = SLIDE_TOL * math.sqrt((b0x - b1x) ** 2 + (b0y - b1y) ** 2)
     if max(0.0, u1) >= min(la, u0):
         gap[k, 0] = OFF_GAP
@@ -143,12 +143,8 @@ def _sliding_joint(k, a, b, x, y, cs, sn, ra, rb, fa, fb, n0, nx, ny, gap, ja, j
         _rows(ja, jb, 3 * k, a, nx, ny, b0x, b0y, ob0x, ob0y, x, y)
         _rows(ja, jb, 3 * k + 1, a, nx, ny, b1x, b1y, ob1x, ob1y, x, y)
         return b0x, b0y, ob0x, ob0y, b1x, b1y, ob1x, ob1y, True
-    if b >= 0:  # b's face normal, pointing into a
-        mx = -(cs[b] * n0[k, 0] - sn[b] * n0[k, 1])
-        my = -(sn[b] * n0[k, 0] + cs[b] * n0[k, 1])
-    else:
-        mx = -n0[k, 0]
-        my = -n0[k, 1]
+    mx, my = _normal(k, b, cs, sn, n0)  # b's face normal, pointing into a: -(this)
+    mx, my = -mx, -my
     p0x, p0y, o0x, o0y = _overlap_end(3 * k, u0 <= la + tol, a, b, x, y, nx, ny, mx, my, b0x,
                                       b0y, ob0x, ob0y, fa[k, 0, 0], fa[k, 0, 1], ra, rb, cs,
                                       sn, gap, ja, jb)
