@@ -91,3 +91,17 @@ def test_macro_block_wedge_of_the_long_wall():
     loaded = np.abs(c.normal_force[boundary]) > 1e-9 * float(w.mass.sum())
     assert c.moving.sum() == 4 and loaded.sum() == 1  # one corner: the pivot
 
+
+
+def test_long_limit_analysis_shows_progress_on_a_terminal(monkeypatch, capsys):
+    # big assemblies take up to a minute (docs/performance.md): on a terminal the LPs of
+    # each direction are counted on stderr; off a terminal (pipes, these tests) nothing
+    import sys
+
+    bd.wall(4, 3, 0.4, 0.2, mu=0.3)
+    assert "limit analysis" not in capsys.readouterr().err
+    monkeypatch.setattr(statics, "PROGRESS_JOINTS", 1)
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
+    bd.wall(4, 3, 0.4, 0.2, mu=0.3)
+    err = capsys.readouterr().err
+    assert "limit analysis of 14 blocks, +x" in err and "limit analysis of 14 blocks, -x" in err

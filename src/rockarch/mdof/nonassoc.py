@@ -20,12 +20,14 @@ convergence the smallest load multiplier of the iterates is returned with a warn
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linprog
 from scipy.sparse import csr_matrix, hstack, identity, vstack
+from tqdm import tqdm
 
 #: Relaxation factor of the normal forces that set the shear capacities (Eq. 10.7).
 RELAX = 0.5
@@ -100,19 +102,32 @@ def select(a_eq, b_eq, cap, lam: float, target: np.ndarray, sliding: np.ndarray,
 
 
 def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
-            cap_lambda: float) -> Outcome:
+            cap_lambda: float, *, desc: str | None = None, position: int = 0,
+            progress: bool | None = None) -> Outcome:
     """Gilbert–Casapulla–Ahmed iteration from the associative state (Eqs. 10.6–10.8).
 
     ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Convergence:
     |Δλ| ≤ 1e-9·max(1, λ) and max|N − Ñ| ≤ 1e-7·Σ m·g. Without it (or when frozen
     capacities cannot carry gravity) the least λ of the iterates and of ``start`` (every
     solution lies below the associative one) is returned, not converged
-    (:func:`warn_unconverged` says so).
+    (:func:`warn_unconverged` says so). ``desc``: a progress bar of the LPs on stderr
+    (line ``position``), shown if ``progress`` (default: when stderr is a terminal).
     """
     nj = len(mu)
     nt = start.x[:2 * nj].reshape(nj, 2).copy()
     lam_prev, best, hist = start.lambda_, start, []
+    show = desc is not None and (sys.stderr.isatty() if progress is None else progress)
+    with tqdm(total=MAX_ITER, desc=desc, unit="LP", disable=not show, file=sys.stderr,
+              leave=False, position=position) as bar:
+        return _iterate(a_eq, b_eq, mu, weight, sliding_of, cap_lambda, nt, lam_prev, best,
+                        hist, bar)
+
+
+def _iterate(a_eq, b_eq, mu, weight, sliding_of, cap_lambda, nt, lam_prev, best, hist,
+             bar) -> Outcome:
+    nj = len(mu)
     for k in range(MAX_ITER):
+        bar.update(1)
         cap = shear_caps(mu, nt, weight)
         res = tresca_lp(a_eq, b_eq, cap, cap_lambda)
         if res.status != 0:

@@ -36,6 +36,9 @@ from rockarch.mdof import nonassoc as na
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
+#: Joints from which the non-associative iteration shows a progress bar on a terminal (the
+#: 205-block wall, 575 joints, takes about a minute).
+PROGRESS_JOINTS = 100
 
 
 @dataclass(frozen=True)
@@ -259,7 +262,10 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     converged, iterations = True, 0
     if friction == "nonassociative":
         out = na.iterate(a_eq, b_eq, mu, state, float(mass.sum()),
-                         lambda duals: _mechanism(duals, *geom)[2], LAMBDA_CAP)
+                         lambda duals: _mechanism(duals, *geom)[2], LAMBDA_CAP,
+                         desc=(f"limit analysis of {nb_} blocks, {'+' if direction > 0 else '-'}x"
+                               if nj >= PROGRESS_JOINTS else None),
+                         position=0 if direction > 0 else 1)
         if out.iterations == 0:  # not even the first capacities (10.6) carry gravity
             raise ValueError("the structure cannot stand under gravity: it hangs on shear "
                              "at joints without normal force (non-associative friction, "
