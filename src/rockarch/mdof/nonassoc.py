@@ -119,31 +119,25 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
     show = desc is not None and (sys.stderr.isatty() if progress is None else progress)
     with tqdm(total=MAX_ITER, desc=desc, unit="LP", disable=not show, file=sys.stderr,
               leave=False, position=position) as bar:
-        return _iterate(a_eq, b_eq, mu, weight, sliding_of, cap_lambda, nt, lam_prev, best,
-                        hist, bar)
-
-
-def _iterate(a_eq, b_eq, mu, weight, sliding_of, cap_lambda, nt, lam_prev, best, hist,
-             bar) -> Outcome:
-    nj = len(mu)
-    for k in range(MAX_ITER):
-        bar.update(1)
-        cap = shear_caps(mu, nt, weight)
-        res = tresca_lp(a_eq, b_eq, cap, cap_lambda)
-        if res.status != 0:
-            break
-        cur = Iterate(float(res.x[-1]), res.x, np.asarray(res.eqlin.marginals))
-        hist.append(cur.lambda_)
-        if 0 < cur.lambda_ < best.lambda_:  # above (10.4): no solution; 0: frozen caps
-            best = cur
-        n_new = select(a_eq, b_eq, cap, cur.lambda_, nt, sliding_of(cur.duals), cap_lambda)
-        if n_new is None:
-            n_new = res.x[:2 * nj].reshape(nj, 2)
-        err = float(np.abs(n_new - nt).max()) / weight
-        if (abs(cur.lambda_ - lam_prev) <= TOL_LAMBDA * max(1.0, cur.lambda_)
-                and err <= TOL_FORCE):
-            return Outcome(cur, True, k + 1, tuple(hist))
-        lam_prev, nt = cur.lambda_, nt + RELAX * (n_new - nt)
+        for k in range(MAX_ITER):
+            bar.update(1)
+            cap = shear_caps(mu, nt, weight)
+            res = tresca_lp(a_eq, b_eq, cap, cap_lambda)
+            if res.status != 0:
+                break
+            cur = Iterate(float(res.x[-1]), res.x, np.asarray(res.eqlin.marginals))
+            hist.append(cur.lambda_)
+            if 0 < cur.lambda_ < best.lambda_:  # above (10.4): no solution; 0: frozen caps
+                best = cur
+            n_new = select(a_eq, b_eq, cap, cur.lambda_, nt, sliding_of(cur.duals),
+                           cap_lambda)
+            if n_new is None:
+                n_new = res.x[:2 * nj].reshape(nj, 2)
+            err = float(np.abs(n_new - nt).max()) / weight
+            if (abs(cur.lambda_ - lam_prev) <= TOL_LAMBDA * max(1.0, cur.lambda_)
+                    and err <= TOL_FORCE):
+                return Outcome(cur, True, k + 1, tuple(hist))
+            lam_prev, nt = cur.lambda_, nt + RELAX * (n_new - nt)
     return Outcome(best, False, len(hist), tuple(hist))
 
 

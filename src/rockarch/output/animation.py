@@ -66,33 +66,31 @@ def _nice_floor(x: float) -> float:
     return max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= x)
 
 
+def _world(resp: MDOFResponse, q: np.ndarray, body: int, pts: np.ndarray) -> np.ndarray:
+    """Points (k, 2) of the assembly as built, carried by ``body`` to configuration q
+    (scaled; body -1, the ground, does not move)."""
+    pts = np.asarray(pts, float) * resp.scale
+    if body < 0:
+        return pts
+    x, y, ph = q[body]
+    c, s = math.cos(ph), math.sin(ph)
+    rel = pts - resp.assembly.centroid[body] * resp.scale
+    return np.stack([x + c * rel[:, 0] - s * rel[:, 1], y + s * rel[:, 0] + c * rel[:, 1]],
+                    axis=1)
+
+
 def _outlines(resp: MDOFResponse, q: np.ndarray) -> list[np.ndarray]:
     """Block outlines for the configuration ``q`` (nb, 3)."""
     a = resp.assembly
-    out = []
-    for ip, poly in enumerate(a.polygons):
-        j = a.body_of_polygon(ip)
-        x, y, ph = q[j]
-        c, s = math.cos(ph), math.sin(ph)
-        rel = (np.asarray(poly) - a.centroid[j]) * resp.scale
-        out.append(np.stack([x + c * rel[:, 0] - s * rel[:, 1],
-                             y + s * rel[:, 0] + c * rel[:, 1]], axis=1))
-    return out
+    return [_world(resp, q, a.body_of_polygon(ip), poly) for ip, poly in enumerate(a.polygons)]
 
 
 def _joint_segment(resp: MDOFResponse, q: np.ndarray, k: int) -> np.ndarray:
     """Joint k's two corners in configuration q, carried by the body on the tail side of
     its normal (the lower/left one), or by the other body for a joint on the ground."""
     a = resp.assembly
-    corners = a.corners[k] * resp.scale
     body = int(a.body_a[k]) if a.body_a[k] >= 0 else int(a.body_b[k])
-    if body < 0:
-        return corners
-    x, y, ph = q[body]
-    c, s = math.cos(ph), math.sin(ph)
-    rel = corners - a.centroid[body] * resp.scale
-    return np.stack([x + c * rel[:, 0] - s * rel[:, 1], y + s * rel[:, 0] + c * rel[:, 1]],
-                    axis=1)
+    return _world(resp, q, body, a.corners[k])
 
 
 def _offsets(resp: MDOFResponse, q: np.ndarray) -> np.ndarray:
@@ -102,20 +100,13 @@ def _offsets(resp: MDOFResponse, q: np.ndarray) -> np.ndarray:
     a = resp.assembly
     out = np.zeros(a.n_joints)
     for k in np.flatnonzero(np.isfinite(a.mu)):
-        pts, tan = [], None
-        for side, body in enumerate((int(a.body_a[k]), int(a.body_b[k]))):
-            p = a.corners[k, 0] * resp.scale
-            c, s = 1.0, 0.0
-            if body >= 0:
-                x, y, ph = q[body]
-                c, s = math.cos(ph), math.sin(ph)
-                rel = p - a.centroid[body] * resp.scale
-                p = np.array([x + c * rel[0] - s * rel[1], y + s * rel[0] + c * rel[1]])
-            if side == 0:
-                n = a.normal[k]
-                tan = np.array([-(s * n[0] + c * n[1]), c * n[0] - s * n[1]])
-            pts.append(p)
-        out[k] = float(tan @ (pts[1] - pts[0]))
+        ba, bb = int(a.body_a[k]), int(a.body_b[k])
+        pa, pb = (_world(resp, q, j, a.corners[k, :1])[0] for j in (ba, bb))
+        ph = q[ba, 2] if ba >= 0 else 0.0
+        n = a.normal[k]
+        tan = np.array([-(math.sin(ph) * n[0] + math.cos(ph) * n[1]),
+                        math.cos(ph) * n[0] - math.sin(ph) * n[1]])
+        out[k] = float(tan @ (pb - pa))
     return out
 
 
