@@ -23,7 +23,7 @@ from pathlib import Path
 
 from matplotlib.animation import FuncAnimation, PillowWriter
 
-from rockarch.motion import pulse
+from rockarch.motion.signals import pulse
 from rockarch.output import animation
 from rockarch.systems import system
 
@@ -72,7 +72,7 @@ def full_redraw(resp, path: Path, fps: int = 20) -> None:
 def in_process(ratio: float, t_free: float, tmp: Path) -> None:
     s = system("mdof", shape="catenary", span=10, rise=3, thickness=0.25, blocks=20,
                t_free=t_free)
-    m = pulse("sine", 1.0, 1.0)
+    m = pulse("sine", period=1.0)
     s.simulate(m, ratio=ratio)  # JIT / cache load
     t0 = time.perf_counter()
     r = s.simulate(m, ratio=ratio)

@@ -24,12 +24,12 @@ import numba
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rockarch import rocking_kernels
-from rockarch.block import RigidBlock, housner_restitution, simulate_batch
-from rockarch.constants import EPS_REST, T_FREE
-from rockarch.constants import SDOF_H_FACTOR as H_FACTOR
-from rockarch.records import el_centro
-from rockarch.spectra import compute_oas
+from rockarch.core.constants import EPS_REST, T_FREE
+from rockarch.core.constants import SDOF_H_FACTOR as H_FACTOR
+from rockarch.motion.records import el_centro
+from rockarch.rocking import kernels as rocking_kernels
+from rockarch.rocking.block import RigidBlock, housner_restitution, simulate_batch
+from rockarch.spectra.oas import compute_oas
 from rockarch.systems import BlockSystem
 
 

@@ -15,9 +15,10 @@ from __future__ import annotations
 import statistics
 import time
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary
-from rockarch.records import el_centro
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
 
 
 def main() -> None:

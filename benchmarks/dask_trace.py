@@ -24,9 +24,9 @@ import psutil
 from distributed import get_task_stream
 
 import rockarch as ra
-from rockarch import fragility as fr
-from rockarch import sweep
-from rockarch.synthetic import synthetic_motions
+from rockarch.core import sweep
+from rockarch.motion.synthetic import synthetic_motions
+from rockarch.risk import fragility as fr
 
 
 def _load(system, motion, p):

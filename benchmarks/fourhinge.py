@@ -18,8 +18,7 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rockarch import mechanism as mc
-from rockarch import motion, spectra, systems
+from rockarch import systems
 from rockarch.arch import catenary
 from rockarch.arch.fourhinge import (
     analyse,
@@ -28,9 +27,12 @@ from rockarch.arch.fourhinge import (
     generalized_inertia_du,
     potential_du,
 )
-from rockarch.constants import EPS_REST, T_FREE
-from rockarch.fourhinge_motion import fourhinge_mechanism
-from rockarch.records import el_centro
+from rockarch.core.constants import EPS_REST, T_FREE
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
+from rockarch.rocking import mechanism as mc
+from rockarch.rocking.fourhinge_motion import fourhinge_mechanism
+from rockarch.spectra import oas as spectra
 
 
 def reference(res, e, motion_, t_free=T_FREE):

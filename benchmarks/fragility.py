@@ -3,10 +3,10 @@ records of ~40 s in <= 10 s on 2 cores).
 
 Run:  .venv/bin/python benchmarks/fragility.py [--records 50] [--p 2] [--workers 2]
 
-The suite is rockarch.synthetic.synthetic_motions(N, seed=0) (Rezaeian & Der Kiureghian
+The suite is rockarch.motion.synthetic.synthetic_motions(N, seed=0) (Rezaeian & Der Kiureghian
 model; durations 12-77 s, mean ~34 s). Timed in the same run, best of ``--repeat``:
 
-* reference: the plain loop a user writes without rockarch.fragility: one
+* reference: the plain loop a user writes without rockarch.risk.fragility: one
   ``rockarch.oas(block, record, p=[p], ratio=grid)`` per record (grid + bisection), then
   the lognormal fit;
 * ``fragility`` in-process (numba threads on every core), the same simulations;
@@ -26,9 +26,9 @@ import time
 import numpy as np
 
 import rockarch as ra
-from rockarch import fragility as fr
-from rockarch import sweep
-from rockarch.synthetic import synthetic_motions
+from rockarch.core import sweep
+from rockarch.motion.synthetic import synthetic_motions
+from rockarch.risk import fragility as fr
 
 GRID = np.round(np.linspace(1.0, 5.0, 81), 12)
 

@@ -5,7 +5,7 @@ Run:  .venv/bin/python benchmarks/fragility_mdof.py [--records 50] [--repeat 1]
           [--variants dask1,dask2,proc2,inproc]
 
 A circular arch (f/l = 0.5, d/l = 0.15, span 1 m scaled to its own p) over the first
-``--records`` records of rockarch.synthetic.synthetic_motions(50, seed=``--seed``) (seed
+``--records`` records of rockarch.motion.synthetic.synthetic_motions(50, seed=``--seed``) (seed
 1: 15-97 s, mean 39.5 s), scanned over ``--ratio-steps`` values of ap/ap,min from 1 to 5
 with bisection to ``--tol`` (``--island-step K``: the adaptive scan). Every record is one
 task (its scan and bisection). Variants: a Dask LocalCluster of 1 and of 2 single-threaded
@@ -29,9 +29,9 @@ import numpy as np
 import psutil
 
 import rockarch as ra
-from rockarch import fragility as fr
-from rockarch import sweep
-from rockarch.synthetic import synthetic_motions
+from rockarch.core import sweep
+from rockarch.motion.synthetic import synthetic_motions
+from rockarch.risk import fragility as fr
 
 
 def _warm(system, motion, p):

@@ -14,10 +14,11 @@ import time
 
 import numpy as np
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary
 from rockarch.mdof import builders as bd
-from rockarch.records import el_centro
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
 
 
 def cpu(asm, rec, ap_min, ratios) -> float:

@@ -20,8 +20,8 @@ import time
 import numpy as np
 
 import rockarch as ra
-from rockarch import fragility as fr
-from rockarch.synthetic import synthetic_motions
+from rockarch.motion.synthetic import synthetic_motions
+from rockarch.risk import fragility as fr
 
 
 def compare(label, system, motions, p, steps, **kw):

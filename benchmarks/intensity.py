@@ -8,7 +8,7 @@ linearly between samples: the same piecewise-linear ground motion, so the same e
 response at the samples). rockarch runs its numba recurrence (Nigam & Jennings) twice: at
 the record's samples only (like for like with lsim) and with its default sub-steps (≥ 150
 per oscillator period, which also catch the peaks between samples). Records: a seeded
-synthetic suite (rockarch.synthetic, Rezaeian & Der Kiureghian model, 0.01 s samples).
+synthetic suite (rockarch.motion.synthetic, Rezaeian & Der Kiureghian model, 0.01 s samples).
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ import time
 import numpy as np
 from scipy import signal
 
-from rockarch import intensity as im
-from rockarch.synthetic import synthetic_motions
+from rockarch.motion import intensity as im
+from rockarch.motion.synthetic import synthetic_motions
 
 
 def reference_sa(acc: np.ndarray, dt: float, periods: np.ndarray, zeta: float) -> np.ndarray:

@@ -34,12 +34,14 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import mdof, motion, spectra, systems
+from rockarch import mdof, systems
 from rockarch.arch import catenary
-from rockarch.block import housner_restitution
 from rockarch.mdof import builders as bd
 from rockarch.mdof.kernel_data import graph_model
-from rockarch.records import el_centro
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
+from rockarch.rocking.block import housner_restitution
+from rockarch.spectra import oas as spectra
 
 sys.path.insert(0, str(Path(__file__).parent))
 sys.path.insert(1, str(Path(__file__).parent.parent))

@@ -24,10 +24,10 @@ import time
 
 import numpy as np
 
-from rockarch import sweep
-from rockarch.motion import GroundMotion
-from rockarch.records import el_centro
-from rockarch.spectra import compute_oas
+from rockarch.core import sweep
+from rockarch.motion.records import el_centro
+from rockarch.motion.signals import GroundMotion
+from rockarch.spectra.oas import compute_oas
 from rockarch.systems import BlockSystem
 
 

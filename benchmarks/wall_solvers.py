@@ -23,12 +23,13 @@ import time
 
 import numpy as np
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary
 from rockarch.mdof import builders as bd
 from rockarch.mdof import graph_run
 from rockarch.mdof.kernel_data import graph_model
-from rockarch.records import el_centro
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
 
 
 def run(model, a, m, t_end):

@@ -15,7 +15,7 @@ import argparse
 import time
 from pathlib import Path
 
-from rockarch import background
+from rockarch.paper import background
 
 
 def _cells(ps: list[float]) -> str:

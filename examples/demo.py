@@ -16,12 +16,15 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import motion, paper, spectra, systems
+from rockarch import systems
 from rockarch.arch import analyse, circular
-from rockarch.block import RigidBlock, simulate
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
 from rockarch.output.arch_plots import plot_mechanism
 from rockarch.output.figures import plot_oas, plot_response, save_figure, subplots
-from rockarch.records import el_centro
+from rockarch.paper import results as paper
+from rockarch.rocking.block import RigidBlock, simulate
+from rockarch.spectra import oas as spectra
 
 ALPHA = 0.1  # slender block (B/H ≈ 0.1): the OAS of slender blocks hardly depend on alpha
 
@@ -62,7 +65,7 @@ def main() -> None:
     lines += ["## OAS for the paper's pulses (Fig. 14), T = 1 s", "",
               "File: `oas_pulses.png`.", ""]
     for axi, sig in zip(axes, ("sine", "square", "step"), strict=True):
-        dsp = spectra.compute_oas(system, motion.pulse(sig, 1.0, 1.0),
+        dsp = spectra.compute_oas(system, motion.pulse(sig, period=1.0),
                                   np.linspace(0.5, 10.0, args.n // 2),
                                   np.linspace(1.0, 8.0, args.n))
         plot_oas(dsp, ax=axi, title=f"{sig}, T = 1 s, alpha = {ALPHA}")

@@ -18,7 +18,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rockarch import paper
+from rockarch.paper import results as paper
 
 
 def main() -> None:

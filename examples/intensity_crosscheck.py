@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rockarch import intensity as im
-from rockarch.records import el_centro
+from rockarch.motion import intensity as im
+from rockarch.motion.records import el_centro
 
 PERIODS = np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0])
 

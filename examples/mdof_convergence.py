@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary
-from rockarch.fourhinge_motion import fourhinge_mechanism
+from rockarch.motion import signals as motion
+from rockarch.rocking.fourhinge_motion import fourhinge_mechanism
 
 
 def main() -> None:
@@ -26,7 +27,7 @@ def main() -> None:
           "N 10 vs 20 | N 20 vs 40 | N 40 vs 80 |")
     print("|---|---|---|---|---|---|---|")
     for sig in ("sine", "square", "step"):
-        m = motion.pulse(sig, 1.0, 1.0)
+        m = motion.pulse(sig, period=1.0)
 
         def run(a=a20, m=m, **kw):
             return mdof.simulate_batch(a, m, pp, rr, ap_min=fh.ap_min, p_ref=fh.p,

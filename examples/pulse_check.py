@@ -14,8 +14,8 @@ from collections import Counter
 
 import numpy as np
 
-from rockarch.synthetic import synthetic_motions
-from rockarch.velocity_pulse import baker_pulse
+from rockarch.motion.synthetic import synthetic_motions
+from rockarch.motion.velocity_pulse import baker_pulse
 
 
 def main() -> None:

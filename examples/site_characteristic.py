@@ -2,7 +2,7 @@
 
 Computes the slender-block site OAS of every record available (the bundled and
 ../shared/records real records, de-duplicated, and a seeded synthetic suite), adds the
-characteristic curves (rockarch.charsite) and prints the skill numbers quoted in
+characteristic curves (rockarch.spectra.characteristic) and prints the skill numbers quoted in
 docs/sites.md; writes the figure docs/img/site_characteristic.png.
 
     PYTHONPATH=src python examples/site_characteristic.py [--synthetic 20] [--out DIR]
@@ -16,9 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import charsite, site
-from rockarch.records import bundled_record_path
-from rockarch.suite import read_suite
+from rockarch.motion.records import bundled_record_path
+from rockarch.motion.suite import read_suite
+from rockarch.spectra import characteristic as charsite
+from rockarch.spectra import site
 
 REPO = Path(__file__).resolve().parents[1]
 #: ../shared/records next to the repository (or next to the folder of git worktrees)
@@ -129,7 +130,7 @@ def main() -> None:
     ap.add_argument("--out", type=Path, default=Path("docs/img"))
     ap.add_argument("--progress", action="store_true")
     args = ap.parse_args()
-    from rockarch.synthetic import synthetic_motions
+    from rockarch.motion.synthetic import synthetic_motions
 
     real = analyse("real", real_records(), args.progress)
     motions = synthetic_motions(args.synthetic, seed=0)

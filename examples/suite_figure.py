@@ -16,11 +16,11 @@ from pathlib import Path
 import numpy as np
 
 import rockarch as ra
-from rockarch import intensity as im
-from rockarch.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD
+from rockarch.motion import intensity as im
+from rockarch.motion.records import el_centro
+from rockarch.motion.velocity_pulse import baker_pulse
 from rockarch.output.figures import save_figure, subplots
-from rockarch.records import el_centro
-from rockarch.velocity_pulse import baker_pulse
 
 PERIODS = np.geomspace(0.05, 5.0, 60)
 

@@ -18,10 +18,10 @@ from __future__ import annotations
 import argparse
 import time
 
-from rockarch import paper
 from rockarch.arch import analyse, catenary, circular
-from rockarch.constants import G
-from rockarch.reference import SECT8, TABLE1, TABLE2
+from rockarch.core.constants import G
+from rockarch.paper import results as paper
+from rockarch.paper.reference import SECT8, TABLE1, TABLE2
 
 
 def pct(ours: float, paper: float) -> str:

@@ -15,9 +15,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rockarch import paper
-from rockarch.constants import G
-from rockarch.reference import SECT8, SECT9, TABLE2
+from rockarch.core.constants import G
+from rockarch.paper import results as paper
+from rockarch.paper.reference import SECT8, SECT9, TABLE2
 
 
 def dev(a: float, b: float) -> str:

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from rockarch import motion as mo
-from rockarch.block import RigidBlock, housner_restitution, simulate, simulate_batch
-from rockarch.records import el_centro
+from rockarch.motion import signals as mo
+from rockarch.motion.records import el_centro
+from rockarch.rocking.block import RigidBlock, housner_restitution, simulate, simulate_batch
 
 from .reference import free_quarter_period, step_boundary
 
@@ -95,7 +95,7 @@ def test_nothing_moves_below_ap_min_record():
 def test_step_impulse_boundary_exact(p):
     """Engine vs the exact quadrature of the step impulse (tests/reference.py). t_free = 80 s
     lets the near-separatrix motion finish; agreement to 1e-6 is RK4 + event location."""
-    from rockarch.spectra import compute_oas
+    from rockarch.spectra.oas import compute_oas
     from rockarch.systems import BlockSystem
 
     alpha, T = 0.2, 1.0
@@ -108,7 +108,7 @@ def test_step_impulse_boundary_linearised_closed_form():
     """Linearised slender block, step impulse of duration T (derivation in docs/block.md):
     overturning iff ap/ap,min ≥ 1/(1 − exp(−p·T)). The exact engine deviates by O(α²):
     below 1e-4 relative for α = 0.01, and 100x more for α = 0.1."""
-    from rockarch.spectra import compute_oas
+    from rockarch.spectra.oas import compute_oas
     from rockarch.systems import BlockSystem
 
     ps = np.array([0.7, 1.5, 3.0])
@@ -193,7 +193,7 @@ def test_bad_input(call, msg):
 
 def test_history_buffer_growth_gives_the_same_history():
     """A too-small history buffer is enlarged and the run repeated: same result."""
-    from rockarch import rocking_kernels as k
+    from rockarch.rocking import kernels as k
 
     b = RigidBlock(2.0, 0.15)
     rec = el_centro()

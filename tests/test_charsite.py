@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import rockarch as ra
-from rockarch import charsite as cs
+from rockarch.spectra import characteristic as cs
 
 
 def test_durations_of_a_rectangular_pulse_are_its_duration():
@@ -65,8 +65,8 @@ def test_normalised_curve_collapses_similar_records():
 
 
 def test_characteristic_and_skill_on_a_small_site():
-    from rockarch import site
-    from rockarch.intensity import mean_period
+    from rockarch.motion.intensity import mean_period
+    from rockarch.spectra import site
 
     motions = [ra.GroundMotion(m.t[:1500], m.a[:1500], m.name)
                for m in (ra.el_centro(180), ra.el_centro(270))]
@@ -99,10 +99,10 @@ def test_site_file_holds_the_new_curves_and_design_reads_them(tmp_path):
 
     from typer.testing import CliRunner
 
-    from rockarch import site
     from rockarch.cli import app
-    from rockarch.records import bundled_record_path
-    from rockarch.suite import write_at2
+    from rockarch.motion.records import bundled_record_path
+    from rockarch.motion.suite import write_at2
+    from rockarch.spectra import site
 
     runner = CliRunner()
     out = tmp_path / "s.nc"
@@ -126,7 +126,7 @@ def test_site_file_holds_the_new_curves_and_design_reads_them(tmp_path):
 
 
 def test_a_record_without_mean_period_is_left_out_of_the_normalised_curve():
-    from rockarch import site
+    from rockarch.spectra import site
 
     m = ra.el_centro()
     long = ra.GroundMotion(m.t[:500], m.a[:500], "El Centro 5 s")

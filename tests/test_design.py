@@ -8,15 +8,15 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rockarch import site
 from rockarch.arch import analyse, catenary, circular, mass_per_horizontal_length
 from rockarch.arch import weighted_catenary as wcat
 from rockarch.arch.replacement import replacement
 from rockarch.cli import app
 from rockarch.design import design_check
+from rockarch.motion.records import bundled_record_path
 from rockarch.output.report import write_report
-from rockarch.records import bundled_record_path
-from rockarch.reference import SECT8_BAND, TABLE2
+from rockarch.paper.reference import SECT8_BAND, TABLE2
+from rockarch.spectra import site
 
 runner = CliRunner()
 

@@ -9,7 +9,7 @@ import pytest
 from scipy import stats
 
 import rockarch as ra
-from rockarch import fragility as fr
+from rockarch.risk import fragility as fr
 
 RATIO = np.round(np.linspace(1.0, 5.0, 17), 12)
 
@@ -132,7 +132,7 @@ def test_im_choices():
 
 @pytest.mark.parametrize("im, period", [("pgv", None), ("sa", 0.5)])
 def test_im_collapse_is_the_im_of_the_record_scaled_to_collapse(records, im, period):
-    from rockarch.intensity import im_value
+    from rockarch.motion.intensity import im_value
 
     sys_ = ra.system("block", alpha=0.2, t_free=3.0)
     res = fr.ida(sys_, records[:1], 2.0, ratio=RATIO, im=im, period=period)
@@ -253,7 +253,7 @@ def test_adaptive_scan_keeps_every_collapse_point(records):
 
 
 def test_each_record_is_stored_as_it_finishes_and_resumes(tmp_path):
-    from rockarch import sweep
+    from rockarch.core import sweep
 
     sys_ = _Pattern(tuple(RATIO[RATIO >= 2.5]))
     suite = [_motion("short", 1.0), _motion("long", 3.0), _motion("mid", 2.0)]
@@ -277,7 +277,7 @@ def test_each_record_is_stored_as_it_finishes_and_resumes(tmp_path):
 
 
 def test_ida_on_worker_processes_is_bit_identical(records):
-    from rockarch import sweep
+    from rockarch.core import sweep
 
     sys_ = ra.system("block", alpha=0.2, t_free=3.0)
     ref = fr.ida(sys_, records, 2.0, ratio=RATIO)

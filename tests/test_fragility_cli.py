@@ -8,7 +8,7 @@ import pytest
 from typer.testing import CliRunner
 
 from rockarch.cli import app
-from rockarch.records import bundled_record_path
+from rockarch.motion.records import bundled_record_path
 
 runner = CliRunner()
 
@@ -26,7 +26,7 @@ def full(tmp_path_factory):
 def folder(tmp_path_factory):
     """Their first 12 s (the strong motion) as .AT2 files: the same checks, faster."""
     import rockarch as ra
-    from rockarch.suite import write_at2
+    from rockarch.motion.suite import write_at2
 
     d = tmp_path_factory.mktemp("short")
     for c in (180, 270):
@@ -139,7 +139,7 @@ def test_design_with_records(tmp_path):
     assert f["pga_at_probability"]["probability"] == 0.1
     assert f["pga_at_probability"]["pga"] < f["median"]  # the 10 % quantile
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
-    from rockarch import site
+    from rockarch.spectra import site
 
     saved = site.load(tmp_path / "site.nc")
     assert saved.sizes["record"] == 2 and "simplified" in saved

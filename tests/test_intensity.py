@@ -1,4 +1,5 @@
-"""Intensity measures against closed forms (rockarch.intensity; docs/theory.md Sect. 11.1)."""
+"""Intensity measures against closed forms (rockarch.motion.intensity; docs/theory.md
+Sect. 11.1)."""
 
 import math
 
@@ -6,10 +7,10 @@ import numpy as np
 import pytest
 
 import rockarch as ra
-from rockarch import intensity as im
-from rockarch.constants import G
-from rockarch.motion import GroundMotion
-from rockarch.records import el_centro
+from rockarch.core.constants import G
+from rockarch.motion import intensity as im
+from rockarch.motion.records import el_centro
+from rockarch.motion.signals import GroundMotion
 
 # Peak sampling error of the Sa recurrence: the recurrence is exact at its sub-steps, a
 # peak between them is missed by at most 1 - cos(pi/N) <= (pi/N)^2/2 = 2.2e-4 (N = 150).

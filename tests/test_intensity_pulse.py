@@ -1,11 +1,11 @@
-"""Baker (2007) pulse indicator and period (rockarch.velocity_pulse)."""
+"""Baker (2007) pulse indicator and period (rockarch.motion.velocity_pulse)."""
 
 import numpy as np
 import pytest
 
-from rockarch import synthetic as sy
-from rockarch import velocity_pulse as vp
-from rockarch.motion import GroundMotion
+from rockarch.motion import synthetic as sy
+from rockarch.motion import velocity_pulse as vp
+from rockarch.motion.signals import GroundMotion
 
 DT = 0.01
 # candidate periods: 120 log-spaced in [0.2, 15] s, neighbours 3.7 % apart

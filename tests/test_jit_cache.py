@@ -10,7 +10,7 @@ import numba
 import pytest
 
 import rockarch
-from rockarch import _jit_cache
+from rockarch.core import jit_cache as _jit_cache
 
 
 @pytest.mark.skipif(bool(os.environ.get("NUMBA_CACHE_DIR")), reason="user's NUMBA_CACHE_DIR")

@@ -1,15 +1,16 @@
-"""Memory and work bounds (rockarch.limits): known before the work, exact verdicts."""
+"""Memory and work bounds (rockarch.core.limits): known before the work, exact verdicts."""
 
 import re
 
 import numpy as np
 import pytest
 
-from rockarch import limits, motion
-from rockarch.block import RigidBlock, simulate
+from rockarch.core import limits
 from rockarch.mdof.simulate import _plan
-from rockarch.mechanism import from_block
-from rockarch.mechanism import simulate as mech_simulate
+from rockarch.motion import signals as motion
+from rockarch.rocking.block import RigidBlock, simulate
+from rockarch.rocking.mechanism import from_block
+from rockarch.rocking.mechanism import simulate as mech_simulate
 
 
 @pytest.fixture

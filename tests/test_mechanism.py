@@ -5,18 +5,19 @@ import math
 import numpy as np
 import pytest
 
-from rockarch import mechanism as mc
-from rockarch import motion as mo
-from rockarch import spectra, systems
+from rockarch import systems
 from rockarch.arch import catenary, circular, polyline
 from rockarch.arch.fourhinge import analyse, generalized_inertia, potential
-from rockarch.block import RigidBlock, simulate, simulate_batch
-from rockarch.fourhinge_motion import (
+from rockarch.motion import signals as mo
+from rockarch.motion.records import el_centro
+from rockarch.rocking import mechanism as mc
+from rockarch.rocking.block import RigidBlock, simulate, simulate_batch
+from rockarch.rocking.fourhinge_motion import (
     fourhinge_mechanism,
     impact_coefficient,
     mirror_impact_coefficient,
 )
-from rockarch.records import el_centro
+from rockarch.spectra import oas as spectra
 
 
 def _eq12(alpha):
@@ -51,7 +52,7 @@ def test_generic_mechanism_matches_block_to_order_alpha_squared(signal):
     equation: OAS boundaries differ by O(alpha²) (measured ≈ 0.3·alpha²)."""
     p = np.array([1.0, 2.0, 4.0, 8.0])
     ratio = np.linspace(1, 8, 29)
-    m = mo.pulse(signal, 1.0, 1.0)
+    m = mo.pulse(signal, period=1.0)
     dev = []
     for alpha in (0.1, 0.01):
         bb = spectra.compute_oas(systems.BlockSystem(alpha=alpha), m, p, ratio, tol=1e-6,
@@ -178,7 +179,7 @@ def test_slender_fourhinge_oas_tends_to_block_oas(signal):
     d/l = 0.0125, 0.9 % at 0.0025, for pT = 1…10)."""
     p = np.linspace(1, 10, 10)
     ratio = np.linspace(1, 8, 57)
-    m = mo.pulse(signal, 1.0, 1.0)
+    m = mo.pulse(signal, period=1.0)
     devs = []
     for d in (0.0125, 0.0025):
         mech = fourhinge_mechanism(catenary(1.0, 0.3, d))

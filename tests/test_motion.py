@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from rockarch import motion as mo
+from rockarch.motion import signals as mo
 
 
 def test_sine_full_cycle_shape():
@@ -49,7 +49,7 @@ def test_scaling_to_pga_and_mirroring():
         (lambda: mo.sine(1.0, 0.0), "period T must be a finite number > 0"),
         (lambda: mo.sine(-1.0, 1.0), "amplitude ap"),
         (lambda: mo.harmonic(1.0, 1.0, cycles=0), "cycles"),
-        (lambda: mo.pulse("sawtooth", 1.0, 1.0), "unknown signal"),
+        (lambda: mo.pulse("sawtooth", period=1.0), "unknown signal"),
         (lambda: mo.GroundMotion([0.0], [1.0]), "at least 2"),
         (lambda: mo.GroundMotion([0.0, 1.0], [np.nan, 1.0]), "non-finite"),
         (lambda: mo.GroundMotion([0.0, 1.0, 0.5], [1.0, 1.0, 1.0]), "non-decreasing"),

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from rockarch.records import G_STANDARD, el_centro, read_at2, read_record, read_two_column
+from rockarch.motion.records import G_STANDARD, el_centro, read_at2, read_record, read_two_column
 
 NEW = """PEER NGA STRONG MOTION DATABASE RECORD
 Test event, 1/1/2000, Station, 90

@@ -14,10 +14,10 @@ import pytest
 from typer.testing import CliRunner
 
 import rockarch as ra
-from rockarch import site
 from rockarch.cli import app
-from rockarch.constants import G
-from rockarch.suite import write_at2
+from rockarch.core.constants import G
+from rockarch.motion.suite import write_at2
+from rockarch.spectra import site
 
 runner = CliRunner()
 #: A coarse IDA scan (the equalities below are exact whatever the grid; coarse for speed).

@@ -5,10 +5,11 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from rockarch import motion as mo
-from rockarch import spectra, systems
-from rockarch.block import RigidBlock, simulate_batch
-from rockarch.records import el_centro
+from rockarch import systems
+from rockarch.motion import signals as mo
+from rockarch.motion.records import el_centro
+from rockarch.rocking.block import RigidBlock, simulate_batch
+from rockarch.spectra import oas as spectra
 
 
 @dataclass(frozen=True)

@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rockarch import site, suite
 from rockarch.cli import app
-from rockarch.constants import G_STANDARD
-from rockarch.records import bundled_record_path
+from rockarch.core.constants import G_STANDARD
+from rockarch.motion import suite
+from rockarch.motion.records import bundled_record_path
+from rockarch.spectra import site
 
 FIXTURE = Path(__file__).parent / "data" / "nga_search_results.csv"
 SHARED = Path("/work/shared/records")

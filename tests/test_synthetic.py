@@ -1,4 +1,4 @@
-"""Synthetic ground motions (Rezaeian & Der Kiureghian model, rockarch.synthetic)."""
+"""Synthetic ground motions (Rezaeian & Der Kiureghian model, rockarch.motion.synthetic)."""
 
 import math
 
@@ -7,10 +7,10 @@ import pytest
 from scipy import integrate
 
 import rockarch as ra
-from rockarch import intensity as im
-from rockarch import synthetic as sy
-from rockarch.constants import G
-from rockarch.motion import GroundMotion
+from rockarch.core.constants import G
+from rockarch.motion import intensity as im
+from rockarch.motion import synthetic as sy
+from rockarch.motion.signals import GroundMotion
 
 P = sy.RDKParameters(arias=0.5, d5_95=15.0, t_mid=10.0, f_mid=5.0, f_slope=0.0, zeta_f=0.3)
 
@@ -140,7 +140,7 @@ def test_baker_finds_the_pulses_of_a_pulse_like_synthetic_suite():
     # all records carry an MP pulse: Baker's method classifies most as pulses, with Tp
     # ~10 % above the MP period (db4's pseudo-period; 27 of 30 and median 1.10 for 30
     # records, measured); the same records without pulses give none
-    from rockarch.velocity_pulse import baker_pulse
+    from rockarch.motion.velocity_pulse import baker_pulse
 
     with_pulse = sy.synthetic_motions(6, seed=3, pulse_fraction=1.0)
     found = [baker_pulse(m) for m in with_pulse]

@@ -11,9 +11,10 @@ d = 0.35) arches under El Centro at 1-3·ap,min and sine pulses, up to collapse.
 
 from __future__ import annotations
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary, circular
-from rockarch.records import el_centro
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
 
 
 def main() -> None:

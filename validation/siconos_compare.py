@@ -21,10 +21,11 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary
-from rockarch.constants import MDOF_H_FACTOR, G
+from rockarch.core.constants import MDOF_H_FACTOR, G
 from rockarch.mdof import builders as bd
+from rockarch.motion import signals as motion
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 ORACLE = Path(__file__).with_name("siconos_oracle.py")
@@ -42,10 +43,10 @@ def cases():
     # the block slides and rocks, then overturns
     blk = bd.with_friction(mdof.single_block(0.5, 2.0), 0.28)
     yield ("sliding-rocking block B=0.5 H=2 mu=0.28, sine 0.7 g T=1.5 s", blk,
-           motion.pulse("sine", 0.7 * G, 1.5), MDOF_H_FACTOR)
+           motion.pulse("sine", period=1.5, ap=0.7 * G), MDOF_H_FACTOR)
     arch = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 10)
     yield ("10-voussoir catenary arch l=10 f=3 d=0.25, rigid supports, no sliding, sine "
-           "1.3 ap,min T=1 s", arch, motion.pulse("sine", 1.3 * arch.ap_min, 1.0),
+           "1.3 ap,min T=1 s", arch, motion.pulse("sine", period=1.0, ap=1.3 * arch.ap_min),
            MDOF_H_FACTOR)
     # on piers the collapse involves 14 bodies and many impacts: the two schemes meet to
     # 5 % only at a quarter of the default step (7 % / 11 % at the default step, 2.5 % /
@@ -55,7 +56,7 @@ def cases():
                            mu=mu)
         label = "no sliding" if mu is None else f"mu={mu:g}"
         yield (f"the same arch on piers 3x1.5 m (2 blocks each), {label}, sine 1.3 ap,min "
-               "T=1 s, h/4", bridge, motion.pulse("sine", 1.3 * bridge.ap_min, 1.0),
+               "T=1 s, h/4", bridge, motion.pulse("sine", period=1.0, ap=1.3 * bridge.ap_min),
                MDOF_H_FACTOR / 4)
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from rockarch.mdof import builders as bd
 from rockarch.mdof import simulate
-from rockarch.motion import GroundMotion
+from rockarch.motion.signals import GroundMotion
 
 LOADS = (0.63, 0.7, 0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.2, 1.45)
 

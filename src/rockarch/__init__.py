@@ -16,34 +16,26 @@ The data flow is ``ground motion -> structure -> simulation -> spectrum -> desig
 Units are SI (m, s, m/s², rad); sign conventions in docs/theory.md.
 """
 
-__version__ = "0.1.0"
-
-from rockarch import _jit_cache  # noqa: E402
+from rockarch.core import __version__
+from rockarch.core import jit_cache as _jit_cache
 
 _jit_cache.use_digest_cache()  # before any numba kernel is defined
 
 from rockarch.arch.geometry import make_arch  # noqa: E402
-from rockarch.constants import G  # noqa: E402
+from rockarch.core.constants import G  # noqa: E402
+from rockarch.core.response import Batch, Response  # noqa: E402
 from rockarch.design import design_system  # noqa: E402
-from rockarch.motion import SIGNALS, GroundMotion  # noqa: E402
-from rockarch.motion import pulse as _pulse  # noqa: E402
-from rockarch.records import el_centro, read_record  # noqa: E402
-from rockarch.response import Batch, Response  # noqa: E402
-from rockarch.spectra import compute_oas as _compute_oas  # noqa: E402
-from rockarch.suite import Suite, read_suite  # noqa: E402
+from rockarch.motion.records import el_centro, read_record  # noqa: E402
+from rockarch.motion.signals import SIGNALS, GroundMotion, pulse  # noqa: E402
+from rockarch.motion.suite import Suite, read_suite  # noqa: E402
+from rockarch.spectra.oas import compute_oas as _compute_oas  # noqa: E402
 from rockarch.systems import KINDS, batch, simulate, system  # noqa: E402
-
-
-def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int = 3) -> GroundMotion:
-    """A pulse of the paper's family (Fig. 14; docs/theory.md Eqs. 8.1–8.3): one of :data:`SIGNALS`,
-    peak ``ap`` [m/s²] (1 by default: OAS and simulate scale it), period [s]."""
-    return _pulse(signal, ap, period, cycles)
 
 
 def synthetic_suite(n: int, seed: int = 0, **kw) -> Suite:
     """A :class:`Suite` of ``n`` seeded synthetic records (Rezaeian & Der Kiureghian model;
-    :func:`rockarch.synthetic.synthetic_suite`)."""
-    from rockarch.synthetic import synthetic_suite as _synthetic_suite
+    :func:`rockarch.motion.synthetic.synthetic_suite`)."""
+    from rockarch.motion.synthetic import synthetic_suite as _synthetic_suite
 
     return _synthetic_suite(n, seed, **kw)
 
@@ -53,7 +45,7 @@ def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
     """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eqs. 2.1–2.2).
 
     The same computation as ``rockarch oas`` (which passes the same grids); see
-    :func:`rockarch.spectra.compute_oas` for the executor and store options.
+    :func:`rockarch.spectra.oas.compute_oas` for the executor and store options.
     """
     kw = {} if tol is None else {"tol": tol}
     return _compute_oas(sys_, motion, p, ratio, progress=progress, executor=executor,

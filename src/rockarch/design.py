@@ -17,12 +17,12 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from rockarch import fragility as fr
-from rockarch import site as site_mod
-from rockarch._validate import positive
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
-from rockarch.constants import OAS_TOL, G
+from rockarch.core.constants import OAS_TOL, G
+from rockarch.core.validate import positive
+from rockarch.risk import fragility as fr
+from rockarch.spectra import site as site_mod
 
 
 @dataclass(frozen=True)
@@ -156,19 +156,19 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     ----------
     system : a system of :func:`rockarch.systems.system` (block, fourhinge, frame, sdof,
         mdof with friction, piers, walls, colonnades, assembly files).
-    records, names : the site's records (a :class:`rockarch.suite.Suite` or motions): the
-        structure's own IDA at ``p`` over them (:func:`rockarch.fragility.ida`); the safe
+    records, names : the site's records (a :class:`rockarch.motion.suite.Suite` or motions): the
+        structure's own IDA at ``p`` over them (:func:`rockarch.risk.fragility.ida`); the safe
         ratio is the envelope (lowest) or ``percentile`` of the records' collapse ratios,
         Eq. (11.34), and the collapse points are fitted by a lognormal (§11.3).
-    site : instead of records, a slender block's site OAS (:func:`rockarch.site.site_oas`)
+    site : instead of records, a slender block's site OAS (:func:`rockarch.spectra.site.site_oas`)
         read at the structure's p, Eq. (11.35) (refused if its collapse mechanism slides).
     p : the structure's frequency parameter [1/s] (default its own, ``system.p_ref``).
     curve : ``"envelope"`` or ``"characteristic"`` (the percentile; with ``site`` the
         file's own percentile).
     ratio, tol : the IDA scan grid of ap/ap,min (default 1 … 5, 81 values) and bisection
         tolerance; n_bootstrap, level, pga, probability : as in
-        :func:`rockarch.fragility.design_summary`.
-    executor, store, progress : as in :func:`rockarch.spectra.compute_oas`.
+        :func:`rockarch.risk.fragility.design_summary`.
+    executor, store, progress : as in :func:`rockarch.spectra.oas.compute_oas`.
     """
     if curve not in SYSTEM_CURVES:
         raise ValueError(f"the site curve of a structure's design must be one of "

@@ -4,10 +4,10 @@ Every kind of structure (:data:`KINDS`) becomes a *system*: a small frozen objec
 name, the limit acceleration ``ap_min`` that the ratio ap/ap,min multiplies, a reference
 frequency parameter ``p_ref``, and three calls that take the ground motion's *shape*:
 
-- ``simulate(motion, ratio=, p=None)`` -> :class:`~rockarch.response.Response`: one time
+- ``simulate(motion, ratio=, p=None)`` -> :class:`~rockarch.core.response.Response`: one time
   history, the motion scaled to PGA = ratio·ap_min, the structure scaled to frequency
   parameter p (p ∝ 1/sqrt(size) at fixed shape; None: its own size);
-- ``batch(motion, p, ratio)`` -> :class:`~rockarch.response.Batch`: many verdicts in
+- ``batch(motion, p, ratio)`` -> :class:`~rockarch.core.response.Batch`: many verdicts in
   parallel (the OAS axes, docs/theory.md Eq. 2.1);
 - ``run(motion, p, ratio)`` -> (overturned, max_rotation_ratio): what a sweep stores.
 
@@ -24,17 +24,17 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from rockarch import mdof
-from rockarch import mechanism as mc
-from rockarch._validate import positive
 from rockarch.arch.geometry import make_arch
-from rockarch.block import RigidBlock
-from rockarch.block import simulate as block_simulate
-from rockarch.block import simulate_batch as block_batch
-from rockarch.constants import EPS_REST, GAP_TOL, MDOF_H_FACTOR, SDOF_H_FACTOR, T_FREE, G
-from rockarch.fourhinge_motion import fourhinge_mechanism
+from rockarch.core.constants import EPS_REST, GAP_TOL, MDOF_H_FACTOR, SDOF_H_FACTOR, T_FREE, G
+from rockarch.core.response import Batch, Response
+from rockarch.core.validate import positive
 from rockarch.mdof.assembly import Assembly
-from rockarch.motion import GroundMotion
-from rockarch.response import Batch, Response
+from rockarch.motion.signals import GroundMotion
+from rockarch.rocking import mechanism as mc
+from rockarch.rocking.block import RigidBlock
+from rockarch.rocking.block import simulate as block_simulate
+from rockarch.rocking.block import simulate_batch as block_batch
+from rockarch.rocking.fourhinge_motion import fourhinge_mechanism
 
 #: The system kinds, with one line each (the CLI's --system choices and help).
 KINDS = {
@@ -296,7 +296,7 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     restitution : coefficient of restitution in [0, 1] (default the structure's own law;
         not for mdof, whose impacts follow from the geometry).
     g, t_free, h_factor, gap_tol : gravity, free motion after the record, step × p (default
-        per model, :mod:`rockarch.constants`), MDOF contact tolerance.
+        per model, :mod:`rockarch.core.constants`), MDOF contact tolerance.
     friction :
         mdof: Coulomb friction coefficient of every joint (None: no sliding, the chain
         model bit for bit); ``ap_min`` is then the friction-aware collapse acceleration

@@ -16,7 +16,7 @@ from rockarch.arch import (
     potential,
     potential_du,
 )
-from rockarch.reference import C4_DEVIATION, TABLE1
+from rockarch.paper.reference import C4_DEVIATION, TABLE1
 
 
 @pytest.fixture(scope="module")

@@ -6,7 +6,7 @@ import pytest
 from rockarch.arch import analyse, catenary, circular
 from rockarch.arch.band import lower_bound_band
 from rockarch.arch.replacement import replacement, replacement_arch
-from rockarch.reference import SECT8_BAND, TABLE2
+from rockarch.paper.reference import SECT8_BAND, TABLE2
 
 
 @pytest.fixture(scope="module")

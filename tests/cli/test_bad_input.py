@@ -4,7 +4,7 @@ runs in seconds: every case fails before any sweep or simulation starts).
 
 The cases are generated: a valid base command per sub-command, then one option at a time
 replaced by bad values (sizes, angles, restitution, grids, lists, records, paths, Dask
-addresses, limits of rockarch.limits).
+addresses, limits of rockarch.core.limits).
 """
 
 from __future__ import annotations
@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rockarch import site
 from rockarch.cli import app
-from rockarch.records import bundled_record_path
+from rockarch.motion.records import bundled_record_path
+from rockarch.spectra import site
 
 runner = CliRunner()
 REC = str(bundled_record_path(180))

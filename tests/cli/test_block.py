@@ -7,10 +7,10 @@ import pytest
 from typer.testing import CliRunner
 
 from rockarch.cli import app
-from rockarch.records import el_centro
+from rockarch.motion.records import el_centro
 
 runner = CliRunner()
-REC = "src/rockarch/data/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
+REC = "src/rockarch/motion/data/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
 
 
 def _json(args):
@@ -59,7 +59,7 @@ def test_simulate_block_json_contract_and_plot(tmp_path):
 
 
 def test_record_scaling_in_cli_matches_api():
-    from rockarch.block import RigidBlock, simulate
+    from rockarch.rocking.block import RigidBlock, simulate
 
     out = _json(["simulate", "block", "--alpha", "0.1", "--p", "3", "--record", REC,
                  "--ratio", "1.3", "--json"])

@@ -9,15 +9,16 @@ import math
 import numpy as np
 import pytest
 
-from rockarch import mdof, motion
-from rockarch.constants import G
+from rockarch import mdof
+from rockarch.core.constants import G
 from rockarch.mdof import builders as bd
 from rockarch.mdof import graph_stepper as gs
 from rockarch.mdof import rest_solver as rs
 from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.graph_solver import NSGS_TOL, SWEEP_TOL
 from rockarch.mdof.kernel_data import graph_model
-from rockarch.records import el_centro
+from rockarch.motion import signals as motion
+from rockarch.motion.records import el_centro
 
 
 def test_band_cholesky_solves_like_numpy():

@@ -7,7 +7,7 @@ from PIL import Image
 from typer.testing import CliRunner
 
 from rockarch.cli import app
-from rockarch.motion import pulse
+from rockarch.motion.signals import pulse
 from rockarch.output import animation
 from rockarch.systems import system
 
@@ -21,7 +21,7 @@ def collapse():
     """A small arch that collapses during the pulse (ratio 1.5)."""
     s = system("mdof", shape="catenary", span=10, rise=3, thickness=0.25, blocks=8,
                t_free=0.5)
-    r = s.simulate(pulse("sine", 1.0, 1.0), ratio=1.5)
+    r = s.simulate(pulse("sine", period=1.0), ratio=1.5)
     assert r.overturned
     return r
 
@@ -30,7 +30,7 @@ def collapse():
 def safe():
     s = system("mdof", shape="catenary", span=10, rise=3, thickness=0.25, blocks=8,
                t_free=0.3)
-    r = s.simulate(pulse("sine", 1.0, 1.0), ratio=0.9)
+    r = s.simulate(pulse("sine", period=1.0), ratio=0.9)
     assert not r.overturned
     return r
 
@@ -71,7 +71,7 @@ def test_structure_at_rest_is_not_magnified():
     keeps factor 1 instead of magnifying the round-off."""
     s = system("mdof", shape="catenary", span=10, rise=3, thickness=0.25, blocks=8,
                t_free=0.1)
-    r = s.simulate(pulse("sine", 1.0, 1.0), ratio=0.5)
+    r = s.simulate(pulse("sine", period=1.0), ratio=0.5)
     assert np.abs(r.q - r.q[0]).max() < 1e-12
     assert animation.plan_frames(r, 10, 50, 1.0).final_magnify == 1.0
 
@@ -143,7 +143,7 @@ def test_sliding_joint_is_drawn_blue():
     # (where the run ends, at rest)
     from rockarch.mdof import builders as bd
     from rockarch.mdof import simulate as simulate_mdof
-    from rockarch.motion import step
+    from rockarch.motion.signals import step
 
     a = bd.from_polygons([[[0, 1], [0.4, 1], [0.4, 1.2], [0, 1.2]]], mu=0.1,
                          supports=[[[-2, 0], [2, 0], [2, 1], [-2, 1]]])

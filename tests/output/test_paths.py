@@ -1,5 +1,5 @@
 """Output paths: checked before any computation, written together or not at all, unique
-temporaries (rockarch.output.paths and the commands that use it)."""
+temporaries (rockarch.core.paths and the commands that use it)."""
 
 import subprocess
 import sys
@@ -10,8 +10,8 @@ import pytest
 from typer.testing import CliRunner
 
 from rockarch.cli import app
-from rockarch.output import paths
-from rockarch.output.paths import atomic_write, check_output, check_outputs, staged
+from rockarch.core import paths
+from rockarch.core.paths import atomic_write, check_output, check_outputs, staged
 
 runner = CliRunner()
 # a small sweep (coarse bisection, short free motion): the outputs are under test here

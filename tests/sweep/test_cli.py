@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 from rockarch.cli import app
 
 runner = CliRunner()
-REC = "src/rockarch/data/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
+REC = "src/rockarch/motion/data/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
 BASE = ["oas", "--alpha", "0.2", "--record", REC, "--p-min", "1", "--p-max", "4",
         "--p-steps", "8", "--ratio-steps", "9", "--t-free", "3", "--json"]
 
@@ -100,7 +100,7 @@ def test_unreachable_scheduler_is_one_line_without_hanging(tmp_path):
 
 
 def test_site_oas_resumes_from_the_store_and_matches_without_it(tmp_path):
-    from rockarch.records import bundled_record_path
+    from rockarch.motion.records import bundled_record_path
 
     args = ["site-oas", "--records", str(bundled_record_path(180)),
             str(bundled_record_path(270)), "--p-min", "1", "--p-max", "4", "--p-steps", "4",
@@ -169,14 +169,17 @@ def test_grid_limits_stop_before_any_work(grid, msg):
 
 
 def test_grid_limit_of_the_library_and_of_a_site():
-    from rockarch import motion as mo
-    from rockarch import site, spectra, sweep, systems
+    from rockarch import systems
+    from rockarch.core import sweep
+    from rockarch.motion import signals as mo
+    from rockarch.spectra import oas as spectra
+    from rockarch.spectra import site
 
     big_p, big_r = np.linspace(1.0, 2.0, 20_000), np.linspace(1.0, 5.0, 501)
     with pytest.raises(ValueError, match="20000 p × 501 ratio values = 10,020,000"):
-        spectra.compute_oas(systems.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.5),
+        spectra.compute_oas(systems.BlockSystem(alpha=0.2), mo.pulse("sine", period=0.5),
                             big_p, big_r, progress=False)
-    shape = mo.pulse("sine", 1.0, 0.5)
+    shape = mo.pulse("sine", period=0.5)
     with pytest.raises(ValueError, match="3 records × 4000 p × 1000 ratio values"):
         site.site_oas([shape] * 3, np.linspace(1, 2, 4000), np.linspace(1, 5, 1000),
                       progress=False)
@@ -184,7 +187,7 @@ def test_grid_limit_of_the_library_and_of_a_site():
 
 
 def test_the_simulation_limit_can_be_raised_and_lowered(monkeypatch):
-    from rockarch.sweep import limits
+    from rockarch.core.sweep import limits
 
     monkeypatch.setenv("ROCKARCH_MAX_SIMULATIONS", "1e8")
     assert limits.check_simulations(50_000_000, "x") == 50_000_000
@@ -200,7 +203,7 @@ def test_the_simulation_limit_can_be_raised_and_lowered(monkeypatch):
 
 
 def test_site_oas_flags_a_record_given_twice(tmp_path):
-    from rockarch.records import bundled_record_path
+    from rockarch.motion.records import bundled_record_path
 
     rec = bundled_record_path(180)
     copy = tmp_path / "copy_of_elcentro.AT2"
@@ -218,7 +221,7 @@ def test_site_oas_flags_a_record_given_twice(tmp_path):
 @pytest.mark.slow  # ~4-6 s: a sweep, then the import of distributed and a 1 s probe
 def test_unreachable_scheduler_is_an_error_even_when_every_chunk_is_stored(tmp_path,
                                                                          monkeypatch):
-    from rockarch.sweep import executors
+    from rockarch.core.sweep import executors
 
     args = ["oas", "--alpha", "0.2", "--signal", "sine", "--period", "0.6", "--p", "1,2",
             "--ratio-steps", "3", "--t-free", "2", "--json", "--store", str(tmp_path)]

@@ -12,13 +12,18 @@ import time
 import numpy as np
 import pytest
 
-from rockarch import motion as mo
-from rockarch import spectra, sweep, systems
+from rockarch import systems
+from rockarch.core import sweep
+from rockarch.motion import signals as mo
+from rockarch.spectra import oas as spectra
 
 SCRIPT = textwrap.dedent('''
     import dataclasses, json, sys, time
     import numpy as np
-    from rockarch import motion as mo, spectra, sweep, systems
+    from rockarch import systems
+    from rockarch.motion import signals as mo
+    from rockarch.spectra import oas as spectra
+    from rockarch.core import sweep
 
     @dataclasses.dataclass(frozen=True)
     class SlowBlock(systems.BlockSystem):
@@ -29,7 +34,7 @@ SCRIPT = textwrap.dedent('''
 
     if __name__ == "__main__":
         store = sweep.Store(sys.argv[1])
-        ds = spectra.compute_oas(SlowBlock(alpha=0.2, t_free=3.0), mo.pulse("sine", 1.0, 0.6),
+        ds = spectra.compute_oas(SlowBlock(alpha=0.2, t_free=3.0), mo.pulse("sine", period=0.6),
                                  np.linspace(0.8, 4.0, 16), np.linspace(1.0, 4.0, 13),
                                  progress=False, chunks=16, executor=sys.argv[2])
         np.savez(sys.argv[3], overturned=ds["overturned"].values,
@@ -75,7 +80,7 @@ def test_interrupted_sweep_resumes(tmp_path, sig, mode):
     assert not list(store.rglob("*.part"))
 
     want = spectra.compute_oas(systems.BlockSystem(alpha=0.2, t_free=3.0),
-                               mo.pulse("sine", 1.0, 0.6), np.linspace(0.8, 4.0, 16),
+                               mo.pulse("sine", period=0.6), np.linspace(0.8, 4.0, 16),
                                np.linspace(1.0, 4.0, 13), progress=False)
     with np.load(tmp_path / "out.npz") as got:
         for v in ("overturned", "max_response", "boundary"):
@@ -88,7 +93,7 @@ def test_interrupted_sweep_resumes(tmp_path, sig, mode):
 
 def test_store_counts_are_per_chunk(tmp_path):
     st = sweep.Store(tmp_path)
-    shape = mo.pulse("sine", 1.0, 0.6)
+    shape = mo.pulse("sine", period=0.6)
     blk = systems.BlockSystem(alpha=0.2, t_free=3.0)
     spectra.compute_oas(blk, shape, [1.0, 2.0], [1.0, 3.0], progress=False, tol=0, chunks=2,
                         store=st)

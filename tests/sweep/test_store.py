@@ -13,12 +13,15 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rockarch import motion as mo
-from rockarch import spectra, sweep, systems
+import rockarch
+from rockarch import systems
 from rockarch.cli import app
+from rockarch.core import sweep
+from rockarch.motion import signals as mo
+from rockarch.spectra import oas as spectra
 
 runner = CliRunner()
-PKG = Path(sweep.__file__).resolve().parent.parent
+PKG = Path(rockarch.__file__).resolve().parent
 HOUSNER = "return 1.0 - 1.5 * math.sin(alpha) ** 2"
 OAS = ["oas", "--alpha", "0.2", "--signal", "sine", "--period", "0.6", "--p", "1,2,3",
        "--ratio-steps", "9", "--t-free", "3", "--json", "--no-progress"]
@@ -36,7 +39,7 @@ def test_source_digest_follows_every_py_file_and_nothing_else(tmp_path):
     (copy / "__pycache__" / "x.cpython-311.pyc").write_bytes(b"\0compiled")
     (copy / "notes.txt").write_text("not code")
     assert sweep.source_digest(copy) == sweep.code_digest()
-    block = copy / "block.py"
+    block = copy / "rocking" / "block.py"
     text = block.read_text()
     assert HOUSNER in text
     block.write_text(text.replace(HOUSNER, HOUSNER.replace("1.5", "1.4")))
@@ -50,7 +53,7 @@ def test_source_digest_follows_every_py_file_and_nothing_else(tmp_path):
 
 def test_other_code_never_reuses_a_chunk(tmp_path, monkeypatch):
     """In process: the same sweep under another code digest recomputes every chunk."""
-    block, shape = systems.BlockSystem(alpha=0.2, t_free=3.0), mo.pulse("sine", 1.0, 0.6)
+    block, shape = systems.BlockSystem(alpha=0.2, t_free=3.0), mo.pulse("sine", period=0.6)
     p, r = np.linspace(1.0, 3.0, 4), np.linspace(1.0, 4.0, 7)
     first = sweep.Store(tmp_path)
     ds = spectra.compute_oas(block, shape, p, r, progress=False, chunks=2, store=first)
@@ -87,7 +90,7 @@ def test_edited_package_copy_recomputes_and_agrees_with_no_store(tmp_path):
     assert err == "" and n >= 3
     again, err = run("--store", str(store))
     assert again == first and err.strip() == f"store {store}: {n} chunks reused, 0 computed"
-    block = root / "rockarch" / "block.py"
+    block = root / "rockarch" / "rocking" / "block.py"
     block.write_text(block.read_text().replace(HOUSNER, HOUSNER.replace("1.5", "1.2")))
     edited, err = run("--store", str(store))
     assert err == ""  # nothing reused

@@ -9,9 +9,11 @@ import warnings
 import numpy as np
 import pytest
 
-from rockarch import motion as mo
-from rockarch import spectra, sweep, systems
-from rockarch.records import el_centro
+from rockarch import systems
+from rockarch.core import sweep
+from rockarch.motion import signals as mo
+from rockarch.motion.records import el_centro
+from rockarch.spectra import oas as spectra
 
 P = np.linspace(0.8, 4.0, 12)
 R = np.linspace(1.0, 4.0, 13)
@@ -24,7 +26,7 @@ def block():
 
 @pytest.fixture(scope="module")
 def shape():
-    return mo.pulse("sine", 1.0, 0.6)
+    return mo.pulse("sine", period=0.6)
 
 
 @pytest.fixture(scope="module")
@@ -49,7 +51,7 @@ def test_every_local_mode_and_chunking_is_bit_identical(block, shape, reference)
         _same_maps(reference, spectra.compute_oas(block, shape, P, R, progress=False,
                                                   chunks=5, executor=ex))
         # a mechanism through the same pool (pickled system with tables)
-        from rockarch.mechanism import rocking_frame
+        from rockarch.rocking.mechanism import rocking_frame
 
         frame = systems.MechanismSystem(rocking_frame(0.2, 1.0, 0.5, 9.81, None), t_free=3.0)
         want = spectra.compute_oas(frame, shape, P[:4], R, progress=False)
@@ -94,14 +96,14 @@ def test_serial_thread_limit_does_not_stick(block, shape):
 def test_cache_key_covers_every_input(block, shape):
     key = sweep.chunk_key(block, shape, P[:2], R)
     assert key == sweep.chunk_key(systems.BlockSystem(alpha=0.2, t_free=3.0), shape, P[:2], R)
-    assert key == sweep.chunk_key(block, mo.pulse("sine", 1.0, 0.6), list(P[:2]), R)
+    assert key == sweep.chunk_key(block, mo.pulse("sine", period=0.6), list(P[:2]), R)
     others = [
         sweep.chunk_key(dataclasses.replace(block, t_free=3.5), shape, P[:2], R),
         sweep.chunk_key(dataclasses.replace(block, restitution=0.9), shape, P[:2], R),
         sweep.chunk_key(dataclasses.replace(block, h_factor=block.h_factor / 2), shape,
                         P[:2], R),
         sweep.chunk_key(dataclasses.replace(block, alpha=0.2 + 1e-15), shape, P[:2], R),
-        sweep.chunk_key(block, mo.pulse("sine", 1.0, 0.61), P[:2], R),
+        sweep.chunk_key(block, mo.pulse("sine", period=0.61), P[:2], R),
         sweep.chunk_key(block, shape.scaled(-1.0), P[:2], R),
         sweep.chunk_key(block, shape, P[:3], R),
         sweep.chunk_key(block, shape, P[:2], R[:-1]),
@@ -118,7 +120,7 @@ def test_cache_key_depends_on_version(block, shape, monkeypatch):
 
 def test_mechanism_keys_are_reproducible(shape):
     from rockarch.arch.geometry import make_arch
-    from rockarch.fourhinge_motion import fourhinge_mechanism
+    from rockarch.rocking.fourhinge_motion import fourhinge_mechanism
 
     def make():
         arch = make_arch("catenary", 1.0, 0.3, 0.05)
@@ -166,7 +168,7 @@ def test_unwritable_store(tmp_path):
     with pytest.raises(ValueError, match="store directory is not writable"):
         sweep.Store(blocker / "store")
     with pytest.raises(ValueError, match="executor must be"):
-        spectra.compute_oas(systems.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.6), [1.0],
+        spectra.compute_oas(systems.BlockSystem(alpha=0.2), mo.pulse("sine", period=0.6), [1.0],
                             [1.0, 2.0], executor=3)
 
 
@@ -180,7 +182,7 @@ def test_silent_scheduler_fails_fast(monkeypatch):
         t0 = time.monotonic()
         with pytest.raises(ValueError, match="cannot reach a Dask scheduler"), \
                 sweep.Executor(scheduler=f"tcp://127.0.0.1:{port}") as ex:
-            sweep.run_chunks(systems.BlockSystem(alpha=0.2), mo.pulse("sine", 1.0, 0.6),
+            sweep.run_chunks(systems.BlockSystem(alpha=0.2), mo.pulse("sine", period=0.6),
                              [(P[:2], R[:2])], executor=ex)
         assert time.monotonic() - t0 < 8
 
@@ -200,7 +202,7 @@ def test_dask_local_cluster_is_bit_identical(block, reference):
                           host="127.0.0.1", dashboard_address=None,
                           silence_logs=logging.ERROR) as cluster, \
                 sweep.Executor(scheduler=cluster.scheduler_address) as ex:
-            ds = spectra.compute_oas(block, mo.pulse("sine", 1.0, 0.6), P, R, progress=False,
+            ds = spectra.compute_oas(block, mo.pulse("sine", period=0.6), P, R, progress=False,
                                      chunks=5, executor=ex)
             assert ex.n_workers == 2
             ds_rec = spectra.compute_oas(block, rec, P[::3], R, progress=False, executor=ex)

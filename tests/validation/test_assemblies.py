@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 from rockarch import mdof
-from rockarch import mechanism as mc
 from rockarch.arch import analyse, catenary, circular
-from rockarch.constants import G
+from rockarch.core.constants import G
 from rockarch.mdof import builders as bd
 from rockarch.mdof import polygons as pg
 from rockarch.mdof import statics
 from rockarch.mdof.assembly_file import assembly_from_dict
+from rockarch.rocking import mechanism as mc
 
 # Tolerance of LP results against closed forms: HiGHS solves to ~1e-9 relative (its
 # default primal/dual feasibility tolerance 1e-7 on forces of order 1).
@@ -124,7 +124,7 @@ def test_wall_without_sliding_moves_where_pymunk_does(direction):
     # above the statics' 7/11 g (a lower bound over the non-associative solutions). With
     # closed unloaded head joints carrying shear (mu = inf as a bilateral row) the same wall
     # stood to 1.45 g.
-    from rockarch.motion import GroundMotion
+    from rockarch.motion.signals import GroundMotion
 
     w = bd.wall(4, 3, 0.4, 0.2)
     t = np.linspace(0.0, 2.5, 2501)
@@ -252,7 +252,7 @@ def test_supports_are_drawn():
     # frame of the animation, where a block sliding off it would otherwise tip in mid-air
     from matplotlib.patches import Polygon
 
-    from rockarch import motion
+    from rockarch.motion import signals as motion
     from rockarch.output.animation import _Renderer, plan_frames
     from rockarch.output.collapse_plots import collapse_figure
 
@@ -275,13 +275,13 @@ def test_docs_vase_on_a_pedestal_example():
     import re
     from pathlib import Path
 
-    from rockarch import motion
+    from rockarch.motion import signals as motion
     from rockarch.systems import MDOFSystem
 
     text = (Path(__file__).resolve().parents[2] / "docs" / "assemblies.md").read_text()
     data = json.loads(re.findall(r"```json\n(.*?)```", text, re.S)[1])
     s = MDOFSystem(assembly_from_dict(data))
-    step = motion.pulse("step", 1.0, 0.2)
+    step = motion.pulse("step", period=0.2)
     r3, r5 = s.simulate(step, ratio=3), s.simulate(step, ratio=5)
     assert not r3.overturned and r3.max_slip == pytest.approx(0.118, abs=5e-4)
     assert r5.overturned

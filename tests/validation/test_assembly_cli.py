@@ -9,7 +9,7 @@ from typer.testing import CliRunner
 
 from rockarch import mdof
 from rockarch.cli import app
-from rockarch.constants import G
+from rockarch.core.constants import G
 from rockarch.systems import system
 
 runner = CliRunner()

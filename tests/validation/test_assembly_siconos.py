@@ -9,10 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rockarch import mdof, motion
+from rockarch import mdof
 from rockarch.arch import catenary
-from rockarch.constants import G
+from rockarch.core.constants import G
 from rockarch.mdof import builders as bd
+from rockarch.motion import signals as motion
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -31,7 +32,7 @@ def test_oracle_contacts_start_closed():
     oracle, compare = _load("siconos_oracle"), _load("siconos_compare")
     a = bd.bridge(catenary(10.0, 3.0, 0.25), 10, spans=2, pier_height=3.0, pier_width=1.0,
                   mu=0.6)
-    case = compare.case_json(a, motion.pulse("sine", 1.0, 1.0), 1e-3, 1.0)
+    case = compare.case_json(a, motion.pulse("sine", period=1.0), 1e-3, 1.0)
     contacts = oracle._contacts(case)
     assert len(contacts) == 2 * a.n_joints
     cen = np.asarray(case["centroid"])
@@ -55,7 +56,7 @@ def _siconos() -> bool:
 def test_sliding_rocking_block_against_siconos(tmp_path):
     compare = _load("siconos_compare")
     blk = bd.with_friction(mdof.single_block(0.5, 2.0), 0.28)
-    ok, line = compare.compare("slide-rock block", blk, motion.pulse("sine", 0.7 * G, 1.5),
-                               tmp_path)
+    m = motion.pulse("sine", period=1.5, ap=0.7 * G)
+    ok, line = compare.compare("slide-rock block", blk, m, tmp_path)
     print(line)
     assert ok, line  # within compare.TOL = 5 % (docs/validation.md: 1.7 % / 3.2 %)

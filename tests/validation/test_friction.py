@@ -9,9 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from rockarch import mdof, motion
-from rockarch.constants import GAP_TOL, G
+from rockarch import mdof
+from rockarch.core.constants import GAP_TOL, G
 from rockarch.mdof import builders as bd
+from rockarch.motion import signals as motion
 
 
 def onset_mu(a: float, lam: float) -> float:
@@ -101,7 +102,7 @@ def test_energy_never_increases_with_friction_and_impacts(mu, assembly, amp):
 
 
 def _maps(assembly, signal, p, ratio):
-    m = motion.pulse(signal, 1.0, 1.0)
+    m = motion.pulse(signal, period=1.0)
     ref = mdof.simulate_batch(assembly, m, p, ratio)
     fr = mdof.simulate_batch(bd.with_friction(assembly, 1e3), m, p, ratio)
     assert fr.extras["lcp_failures"].sum() == 0

@@ -9,7 +9,7 @@ import pytest
 
 from rockarch import mdof
 from rockarch.arch import catenary
-from rockarch.constants import G
+from rockarch.core.constants import G
 from rockarch.mdof import builders as bd
 from rockarch.mdof import nonassoc, statics
 

@@ -16,10 +16,11 @@ import pytest
 
 pytest.importorskip("pymunk")
 
-from rockarch import mdof, motion  # noqa: E402
+from rockarch import mdof  # noqa: E402
 from rockarch.arch import catenary  # noqa: E402
-from rockarch.constants import G  # noqa: E402
+from rockarch.core.constants import G  # noqa: E402
 from rockarch.mdof import builders as bd  # noqa: E402
+from rockarch.motion import signals as motion
 from rockarch.systems import MDOFSystem, scale_to_ratio  # noqa: E402
 from tests.validation import pymunk_oracle as po  # noqa: E402
 
@@ -61,7 +62,7 @@ def verdict_grid(name):
     ra = np.zeros((len(periods), len(ratios)), bool)
     pm = np.zeros_like(ra)
     for i, period in enumerate(periods):
-        shape = motion.pulse("sine", 1.0, period)
+        shape = motion.pulse("sine", period=period)
         for j, r in enumerate(ratios):
             ra[i, j] = sysobj.simulate(shape, ratio=r).overturned
             m = scale_to_ratio(shape, r, a.ap_min)

@@ -5,9 +5,9 @@ import math
 import pytest
 from typer.testing import CliRunner
 
-from rockarch import background
 from rockarch.cli import app
-from rockarch.constants import G
+from rockarch.core.constants import G
+from rockarch.paper import background
 
 
 @pytest.mark.slow  # ~60 s alone, 170 s on a loaded machine: every table and figure

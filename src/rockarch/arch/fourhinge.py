@@ -28,11 +28,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from rockarch._validate import positive
 from rockarch.arch.cutting import Voussoirs
 from rockarch.arch.geometry import Arch
 from rockarch.arch.thrust import Hinge, ThrustResult, limit_analysis
-from rockarch.constants import G
+from rockarch.core.constants import G
+from rockarch.core.validate import positive
 
 
 def _perp(p: np.ndarray) -> np.ndarray:

@@ -11,10 +11,10 @@ from collections.abc import Callable
 
 import numpy as np
 
-from rockarch._validate import positive
 from rockarch.arch.cutting import voussoirs
 from rockarch.arch.geometry import Arch, _thickness_arg
 from rockarch.arch.weights import HorizontalWeights, funicular_axis, horizontal_weights
+from rockarch.core.validate import positive
 
 
 def weighted_catenary(span: float, rise: float, thickness, *, weights=None,

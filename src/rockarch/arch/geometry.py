@@ -30,7 +30,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from rockarch._validate import finite_array, positive
 from rockarch.arch.shapes import (
     SHAPES,
     AxisFn,
@@ -43,6 +42,7 @@ from rockarch.arch.shapes import (
     _two_centred,
 )
 from rockarch.arch.weights import HorizontalWeights
+from rockarch.core.validate import finite_array, positive
 
 __all__ = ["CONTINUOUS_BLOCKS", "MASS_MODELS", "SHAPES", "Arch", "catenary", "circular",
            "elliptical", "from_contour", "make_arch", "pointed", "polyline"]

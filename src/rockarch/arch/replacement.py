@@ -24,13 +24,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from rockarch._validate import positive
 from rockarch.arch.band import AXES, Band, lower_bound_band
 from rockarch.arch.fourhinge import ArchMechanism, analyse
 from rockarch.arch.geometry import Arch, catenary
 from rockarch.arch.thrust import limit_analysis
 from rockarch.arch.weights import HorizontalWeights
-from rockarch.constants import G
+from rockarch.core.constants import G
+from rockarch.core.validate import positive
 
 RULES = ("lower-bound", "equivalent")
 MASSES = ("own", "original")

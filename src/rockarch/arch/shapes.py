@@ -13,7 +13,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import brentq
 
-from rockarch._validate import positive
+from rockarch.core.validate import positive
 
 SHAPES = ("catenary", "circular", "pointed", "elliptical")
 

@@ -23,10 +23,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, linprog
 
-from rockarch._validate import in_range, positive
 from rockarch.arch.cutting import Voussoirs, voussoirs
 from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch
-from rockarch.constants import G
+from rockarch.core.constants import G
+from rockarch.core.validate import in_range, positive
 
 _LAMBDA_CAP = 1e3  # a "mechanism" needing more than 1000 g is no mechanism
 

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from rockarch._validate import finite_array, positive
 from rockarch.arch.shapes import AxisFn
+from rockarch.core.validate import finite_array, positive
 
 
 @dataclass(frozen=True)

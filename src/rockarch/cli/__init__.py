@@ -2,7 +2,7 @@
 
 Every command accepts ``--json`` (one JSON object on stdout, SI units). Bad input prints one
 line ``error: ...`` on stderr and exits with status 2. The commands parse options and call
-the library (:func:`rockarch.systems.system`, :func:`rockarch.spectra.compute_oas`, ...);
+the library (:func:`rockarch.systems.system`, :func:`rockarch.spectra.oas.compute_oas`, ...);
 they compose nothing themselves.
 """
 

@@ -7,7 +7,7 @@ import sys
 import typer
 from typer.core import TyperGroup
 
-from rockarch import __version__
+from rockarch.core import __version__
 
 # the click that typer runs on (typer >= 0.24 vendors its own copy)
 _CLICK_ERROR = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")

@@ -17,11 +17,11 @@ import numpy as np
 import typer
 
 from rockarch.arch.geometry import SHAPES
-from rockarch.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
-from rockarch.motion import SIGNALS, GroundMotion, pulse
-from rockarch.records import read_record
-from rockarch.suite import Suite, read_suite
-from rockarch.sweep import check_steps, default_store_dir
+from rockarch.core.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
+from rockarch.core.sweep import check_steps, default_store_dir
+from rockarch.motion.records import read_record
+from rockarch.motion.signals import SIGNALS, GroundMotion, pulse
+from rockarch.motion.suite import Suite, read_suite
 from rockarch.systems import KINDS
 
 
@@ -57,7 +57,7 @@ def fail(message: str) -> None:
 
 def guarded(func: Callable) -> Callable:
     """Decorate a CLI command: ValueError / OSError become one line on stderr and exit 2
-    (as do MemoryError and OverflowError, which the limits of rockarch.limits should
+    (as do MemoryError and OverflowError, which the limits of rockarch.core.limits should
     prevent)."""
 
     @functools.wraps(func)
@@ -130,7 +130,7 @@ def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
         raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
     if period is None:
         raise ValueError(f"--signal {signal.value} needs --period T (seconds)")
-    return pulse(signal.value, 1.0, period, cycles)
+    return pulse(signal.value, period=period, cycles=cycles)
 
 
 def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
@@ -218,7 +218,7 @@ MDOF_H_OPT = typer.Option(MDOF_H_FACTOR, help="Time step × p (safe range 1e-4 �
 MDOF_TOL_OPT = typer.Option(GAP_TOL, help="Contact tolerance / joint thickness "
                             "(1e-10 … 1e-3).")
 
-# sweep options (rockarch.sweep; docs/sweeps.md), shared by oas and site-oas
+# sweep options (rockarch.core.sweep; docs/sweeps.md), shared by oas and site-oas
 WORKERS_OPT = typer.Option(None, help="Local worker processes (default: every core; small "
                            "sweeps run in-process).")
 SCHEDULER_OPT = typer.Option(None, help="Run on a running Dask scheduler tcp://HOST:PORT.")

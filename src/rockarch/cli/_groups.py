@@ -124,7 +124,7 @@ RUN: Group = MOTION + RATIO + SDOF + (
 #: The time step and contact tolerance of the MDOF engine.
 MDOF_STEP: Group = (("h_factor", float, MDOF_H_OPT), ("gap_tol", float, MDOF_TOL_OPT))
 
-#: Where a sweep runs and is kept (rockarch.sweep; docs/sweeps.md).
+#: Where a sweep runs and is kept (rockarch.core.sweep; docs/sweeps.md).
 SWEEP: Group = (
     ("workers", int, WORKERS_OPT), ("scheduler", str, SCHEDULER_OPT),
     ("dask_workers", int, DASK_WORKERS_OPT), ("store", Path, STORE_OPT),

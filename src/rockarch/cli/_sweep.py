@@ -1,6 +1,6 @@
 """The sweep options of ``rockarch oas``, ``site-oas`` and ``fragility`` (``--workers``,
 ``--scheduler``, ``--dask-workers``, ``--store``, ``--no-store``): which executor and store
-of :mod:`rockarch.sweep` they ask for (docs/sweeps.md, "Command line")."""
+of :mod:`rockarch.core.sweep` they ask for (docs/sweeps.md, "Command line")."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import contextlib
 import os
 from collections.abc import Callable
 
-from rockarch.sweep import Executor, Store
+from rockarch.core.sweep import Executor, Store
 
 #: Below this many simulations the CLI runs a sweep in-process (numba threads on every
 #: core): starting a process pool (~0.8 s) costs more than it saves (docs/sweeps.md).

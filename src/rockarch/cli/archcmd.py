@@ -7,7 +7,6 @@ from pathlib import Path
 
 import typer
 
-from rockarch._validate import in_range, positive
 from rockarch.arch.fourhinge import analyse
 from rockarch.arch.geometry import MASS_MODELS, make_arch
 from rockarch.arch.thrust import minimum_thickness
@@ -22,6 +21,7 @@ from rockarch.cli._common import (
     guarded,
     print_json,
 )
+from rockarch.core.validate import in_range, positive
 from rockarch.output import check_outputs
 from rockarch.output.arch_plots import plot_mechanism
 from rockarch.systems import check_blocks

@@ -1,5 +1,5 @@
 """``rockarch cache info`` and ``rockarch cache clear``: the store of finished sweep chunks
-(:mod:`rockarch.sweep.store`; docs/sweeps.md, "The store")."""
+(:mod:`rockarch.core.sweep.store`; docs/sweeps.md, "The store")."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import typer
 
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, guarded, print_json
-from rockarch.sweep import clear_store, code_digest, store_info
+from rockarch.core.sweep import clear_store, code_digest, store_info
 
 cache_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                         help="The store of finished sweep chunks (oas, site-oas, "

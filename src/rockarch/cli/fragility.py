@@ -11,7 +11,6 @@ from pathlib import Path
 import numpy as np
 import typer
 
-from rockarch import fragility as fr
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import echo_err, guarded, read_records
@@ -20,7 +19,8 @@ from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
-from rockarch.record_scan import check_island_step
+from rockarch.risk import fragility as fr
+from rockarch.risk.record_scan import check_island_step
 
 #: The --im choices (the library's registry).
 Im = Enum("Im", {v: v for v in fr.IMS}, type=str)

@@ -7,7 +7,6 @@ from pathlib import Path
 
 import typer
 
-from rockarch import spectra
 from rockarch.cli._app import app
 from rockarch.cli._common import (
     JSON_OPT,
@@ -24,6 +23,7 @@ from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_oas, save_figure
 from rockarch.output.tables import boundary_table
+from rockarch.spectra import oas as spectra
 
 
 @app.command(short_help="OAS of a block, mechanism or MDOF arch for one motion.")

@@ -7,14 +7,14 @@ from pathlib import Path
 
 import typer
 
-from rockarch import intensity, synthetic
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
-from rockarch.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD
+from rockarch.motion import intensity, synthetic
+from rockarch.motion.suite import describe, read_suite
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.suite_plots import plot_spectra
-from rockarch.suite import describe, read_suite
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                           help="Record suites: metadata and intensity measures.")

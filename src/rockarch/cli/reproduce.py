@@ -9,7 +9,7 @@ import typer
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, echo_err, guarded, print_json
 from rockarch.output import check_outputs
-from rockarch.reproduce import reproduce
+from rockarch.paper.reproduce import reproduce
 
 
 @app.command("reproduce", short_help="The paper's tables and figures, paper vs computed.")

@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 import typer
 
-from rockarch._validate import positive
 from rockarch.cli._app import app, simulate_app
 from rockarch.cli._common import (
     ARCH_RISE_OPT,
@@ -26,6 +25,7 @@ from rockarch.cli._common import (
     value,
 )
 from rockarch.cli._groups import MDOF, MDOF_STEP, MOTION, RATIO, RUN, SDOF, options, pick
+from rockarch.core.validate import positive
 from rockarch.output import check_outputs
 from rockarch.output.animation import animate as write_gif
 from rockarch.output.animation import check_options

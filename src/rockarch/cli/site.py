@@ -7,13 +7,8 @@ from pathlib import Path
 
 import typer
 
-from rockarch import charsite
-from rockarch import fragility as fr
-from rockarch import site as site_mod
-from rockarch._validate import positive
 from rockarch.arch.geometry import make_arch
 from rockarch.arch.replacement import RULES
-from rockarch.charsite import characteristic
 from rockarch.cli._app import app
 from rockarch.cli._common import (
     G_OPT,
@@ -33,11 +28,16 @@ from rockarch.cli._common import (
 from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import _print_table, ida_sweep_options
+from rockarch.core.validate import positive
 from rockarch.design import design_check, design_system
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
 from rockarch.output.fragility_plots import fragility_html
 from rockarch.output.report import write_report, write_system_report
+from rockarch.risk import fragility as fr
+from rockarch.spectra import characteristic as charsite
+from rockarch.spectra import site as site_mod
+from rockarch.spectra.characteristic import characteristic
 from rockarch.systems import system as make_system
 
 

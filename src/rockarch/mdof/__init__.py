@@ -5,7 +5,8 @@ no sliding, no damping during motion, inelastic impacts; exact (second-order) ki
 Moreau–Jean time stepping with an exact LCP solve per step (docs/mdof.md)::
 
     from rockarch.arch import catenary
-    from rockarch import mdof, motion
+    from rockarch import mdof
+    from rockarch.motion import signals as motion
     a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
     res = mdof.simulate(a, motion.sine(1.2 * a.ap_min, 1.0))
     res.to_dict()

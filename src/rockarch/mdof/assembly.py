@@ -22,9 +22,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rockarch._validate import positive
 from rockarch.arch import analyse, voussoirs
-from rockarch.constants import G
+from rockarch.core.constants import G
+from rockarch.core.validate import positive
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,7 @@ import json
 import math
 from pathlib import Path
 
-from rockarch.constants import G
+from rockarch.core.constants import G
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.builders import friction_value, from_polygons
 

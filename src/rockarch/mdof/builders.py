@@ -25,9 +25,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from rockarch._validate import positive
 from rockarch.arch import Arch, voussoirs
-from rockarch.constants import G
+from rockarch.core.constants import G
+from rockarch.core.validate import positive
 from rockarch.mdof import polygons as pg
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.statics import LAMBDA_CAP, collapse, limit_analysis

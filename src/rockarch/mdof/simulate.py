@@ -14,16 +14,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rockarch import limits
-from rockarch._validate import in_range
-from rockarch.constants import GAP_TOL, T_FREE
-from rockarch.constants import MDOF_H_FACTOR as H_FACTOR
+from rockarch.core import limits
+from rockarch.core.constants import GAP_TOL, T_FREE
+from rockarch.core.constants import MDOF_H_FACTOR as H_FACTOR
+from rockarch.core.response import Batch, Response, run_batch
+from rockarch.core.validate import in_range
 from rockarch.mdof import chain_stepper as _k
 from rockarch.mdof import graph_run as _g
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.kernel_data import chain_model, graph_model
-from rockarch.motion import GroundMotion
-from rockarch.response import Batch, Response, run_batch
+from rockarch.motion.signals import GroundMotion
 
 
 def check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
@@ -94,8 +94,8 @@ def _motion_arrays(motion: GroundMotion | None):
 def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: int
           ) -> tuple[int, int]:
     """Time steps of a simulation and the recording stride, known before anything is
-    allocated (docs/theory.md Eq. (8.7)): at most :func:`rockarch.limits.max_mdof_steps`
-    steps (else ValueError), a history of at most :data:`rockarch.limits.MAX_HISTORY_BYTES`
+    allocated (docs/theory.md Eq. (8.7)): at most :func:`rockarch.core.limits.max_mdof_steps`
+    steps (else ValueError), a history of at most :data:`rockarch.core.limits.MAX_HISTORY_BYTES`
     (every k-th step recorded above it; the simulation itself is unchanged)."""
     need = t_end / h
     if not need <= limits.max_mdof_steps():
@@ -116,7 +116,7 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
     Free motion continues ``t_free`` s after the motion ends, or until rest or collapse.
     ``record_every``: record every k-th step (raised when the history would exceed
-    :data:`rockarch.limits.MAX_HISTORY_BYTES`).
+    :data:`rockarch.core.limits.MAX_HISTORY_BYTES`).
     """
     check_settings(t_free, h_factor, gap_tol)
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,

@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import linprog
 from scipy.sparse import coo_matrix
 
-from rockarch.constants import G
+from rockarch.core.constants import G
 from rockarch.mdof import macroblock as mb
 from rockarch.mdof import nonassoc as na
 

@@ -1,7 +1,7 @@
 """Everything rockarch writes for people: figures, HTML pages, animations, text tables, and
 the one output-path check and atomic writer they all use.
 
-Modules: :mod:`~rockarch.output.paths` (check before computing, atomic and staged writes,
+Modules: :mod:`~rockarch.core.paths` (check before computing, atomic and staged writes,
 the output formats), :mod:`~rockarch.output.figures` (canvas helpers, OAS maps, time
 histories, site OAS), :mod:`~rockarch.output.arch_plots` (arch drawings),
 :mod:`~rockarch.output.html` (the page writer and stylesheet),
@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import importlib
 
-from rockarch.output.paths import (
+from rockarch.core.paths import (
     FORMATS,
     OutputError,
     atomic_write,

@@ -27,9 +27,9 @@ from matplotlib.patches import Polygon
 from PIL import Image
 from tqdm import tqdm
 
+from rockarch.core.paths import atomic_write
 from rockarch.output.collapse_plots import draw_supports
 from rockarch.output.figures import new_figure
-from rockarch.output.paths import atomic_write
 
 if TYPE_CHECKING:
     from rockarch.mdof.simulate import MDOFResponse

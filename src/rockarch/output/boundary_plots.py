@@ -1,6 +1,6 @@
 """Figures that compare OAS boundaries (the lowest overturning ap/ap,min over p) of several
-structures: the paper's hypotheses and Fig. 19 (:mod:`rockarch.paper`), the background
-figures 2 and 3 (:mod:`rockarch.background`). The modules that compute the curves hand
+structures: the paper's hypotheses and Fig. 19 (:mod:`rockarch.paper.results`), the background
+figures 2 and 3 (:mod:`rockarch.paper.background`). The modules that compute the curves hand
 over :class:`Panel` grids; the drawing lives here only.
 """
 

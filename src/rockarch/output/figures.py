@@ -19,7 +19,7 @@ from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from rockarch.output.paths import atomic_write
+from rockarch.core.paths import atomic_write
 
 SAFE_COLOR = "#f2f2f2"
 UNSAFE_COLOR = "#6a9fd4"

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from rockarch.constants import G_STANDARD
-from rockarch.fragility import Fragility
+from rockarch.core.constants import G_STANDARD
 from rockarch.output.figures import subplots
 from rockarch.output.html import inline_figure, key_value_table
 from rockarch.output.suite_plots import plot_spectra
+from rockarch.risk.fragility import Fragility
 
 #: Plot units of each intensity measure: (label, factor from SI).
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
@@ -70,7 +70,7 @@ def fragility_html(frag: Fragility, summary: dict, suite=None, *,
     """HTML sections (figures inlined as base64 PNG) for the design report: the suite's
     response spectra (Sa/PGA, if ``suite`` is given), then the replacement's fragility:
     the curve with its band and points, θ, β and the probabilities of
-    :func:`rockarch.fragility.design_summary`; ``of`` names the structure in the title."""
+    :func:`rockarch.risk.fragility.design_summary`; ``of`` names the structure in the title."""
 
     spectra = ""
     if suite is not None:

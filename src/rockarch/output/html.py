@@ -10,8 +10,8 @@ import html
 from collections.abc import Iterable
 from pathlib import Path
 
+from rockarch.core.paths import write_text
 from rockarch.output.figures import png_bytes
-from rockarch.output.paths import write_text
 
 STYLESHEET = """
 body { font-family: sans-serif; max-width: 70em; margin: 2em auto; padding: 0 1em;

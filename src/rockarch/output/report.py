@@ -9,13 +9,13 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from rockarch import __version__
-from rockarch.constants import G_STANDARD
+from rockarch.core import __version__
+from rockarch.core.constants import G_STANDARD
+from rockarch.core.paths import write_text
 from rockarch.design import DesignResult, SystemDesign
 from rockarch.output.arch_plots import design_arch_figure
 from rockarch.output.figures import new_figure
 from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
-from rockarch.output.paths import write_text
 
 ASSUMPTIONS = [
     "The arch is replaced by a catenary arch carrying its own mass (paper Sect. 4 and 8), on "

@@ -7,9 +7,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from rockarch import intensity as im
+from rockarch.motion import intensity as im
+from rockarch.motion.suite import Suite
 from rockarch.output.figures import subplots
-from rockarch.suite import Suite
 
 #: Periods of the plotted spectra [s].
 PLOT_PERIODS = np.geomspace(0.05, 5.0, 60)

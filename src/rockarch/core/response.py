@@ -1,0 +1,108 @@
+"""One result vocabulary for every rocking system: :class:`Response` and :class:`Batch`.
+
+A simulation of a rigid block, of an SDOF mechanism (four-hinge arch, rocking frame, any
+(p, delta, ap,min) mechanism) or of an MDOF assembly returns a :class:`Response` (or a
+subclass carrying the kind's own time histories); many simulations of one motion return a
+:class:`Batch`. The verdict is the same everywhere (docs/theory.md §0, Eqs. 1.5 and 3.5):
+
+- ``overturned``: the structure collapsed (block: |theta| reached alpha; mechanism: |u|
+  reached delta; MDOF: the frozen-configuration collapse test of docs/mdof.md);
+- ``t_overturn``: when [s], None if safe;
+- ``max_rotation_ratio``: the largest rotation over its overturning value (theta/alpha,
+  u/delta, or the MDOF reference rotation over delta), 1 at collapse;
+- ``impacts``: the number of impacts.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from rockarch.core.validate import P_MAX
+
+
+@dataclass(frozen=True, kw_only=True)
+class Response:
+    """The outcome of one simulation (Eq. 3 of docs/theory.md); subclasses add histories.
+
+    Attributes
+    ----------
+    system : str
+        Name of the simulated structure.
+    motion_name : str
+        Name of the ground motion.
+    t : ndarray
+        Recorded times [s].
+    overturned : bool
+    t_overturn : float or None
+    max_rotation_ratio : float
+    impacts : int
+    t_end : float
+        Time at which the simulation stopped (rest, collapse or end of free motion) [s].
+    """
+
+    system: str
+    motion_name: str
+    t: np.ndarray
+    overturned: bool
+    t_overturn: float | None
+    max_rotation_ratio: float
+    impacts: int
+    t_end: float
+
+    def to_dict(self) -> dict:
+        """The verdict as plain numbers (the CLI's ``--json`` output).
+
+        ``max_theta_over_alpha`` repeats ``max_rotation_ratio`` under its earlier name.
+        """
+        return {
+            "overturned": bool(self.overturned),
+            "t_overturn": self.t_overturn,
+            "max_rotation_ratio": float(self.max_rotation_ratio),
+            "max_theta_over_alpha": float(self.max_rotation_ratio),
+            "impacts": int(self.impacts),
+        }
+
+
+@dataclass(frozen=True, kw_only=True)
+class Batch:
+    """Verdicts of many simulations of one motion (arrays shaped like the broadcast inputs).
+
+    ``extras`` holds kind-specific arrays (MDOF: ``open_joints_max``, ``lcp_failures``).
+    """
+
+    overturned: np.ndarray
+    t_overturn: np.ndarray
+    max_rotation_ratio: np.ndarray
+    impacts: np.ndarray
+    extras: dict | None = None
+
+
+def run_batch(p, ratio, run: Callable[[np.ndarray, np.ndarray], tuple], *,
+              extras: tuple[str, ...] = ()) -> Batch:
+    """Validate and broadcast (p, ratio), run them in a fixed balanced order, return a Batch.
+
+    ``run(p, ratio)`` receives flat contiguous arrays (a fixed random permutation of the
+    pairs, so that the numba threads share early-ending runs evenly) and returns the kernel
+    arrays (status, t_overturn, max ratio, impacts, *extras); status 1 means collapse.
+    """
+    p_arr, r_arr = np.broadcast_arrays(np.asarray(p, dtype=float),
+                                       np.asarray(ratio, dtype=float))
+    shape = p_arr.shape
+    pf = np.ascontiguousarray(p_arr.ravel())
+    rf = np.ascontiguousarray(r_arr.ravel())
+    if pf.size and not (np.all(np.isfinite(pf)) and np.all(pf > 0)):
+        raise ValueError("p must be a finite number > 0 for every run")
+    if pf.size and np.max(pf) > P_MAX:
+        raise ValueError(f"p must lie in (0, {P_MAX:g}] 1/s, got {np.max(pf):g}")
+    if rf.size and not (np.all(np.isfinite(rf)) and np.all(rf >= 0)):
+        raise ValueError("ratio ap/ap,min must be finite and >= 0")
+    perm = np.random.default_rng(0).permutation(pf.size)
+    out = run(np.ascontiguousarray(pf[perm]), np.ascontiguousarray(rf[perm]))
+    inv = np.empty_like(perm)
+    inv[perm] = np.arange(perm.size)
+    back = [np.asarray(a)[inv].reshape(shape) for a in out]
+    return Batch(overturned=back[0] == 1, t_overturn=back[1], max_rotation_ratio=back[2],
+                 impacts=back[3], extras=dict(zip(extras, back[4:], strict=True)) or None)

@@ -1,0 +1,210 @@
+"""The resumable store of a sweep: one checksummed file per finished chunk, named by its
+key (:func:`rockarch.core.sweep.keys.chunk_key`), written atomically (docs/sweeps.md, "The store").
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import io
+import os
+import re
+import tempfile
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+_MAGIC = b"RKCHUNK1\n"
+#: Names of the files a store writes (chunks, and temporary files of unfinished writes);
+#: ``clear_store`` removes these and nothing else.
+_CHUNK_NAME = re.compile(r"^[0-9a-f]{64}\.npz$")
+_PART_NAME = re.compile(r"^\.[0-9a-f]{16}-.*\.part$")
+_SUBDIR_NAME = re.compile(r"^[0-9a-f]{2}$")
+
+
+class StoreWarning(UserWarning):
+    """A chunk file of the store was corrupt (it is recomputed)."""
+
+
+def default_store_dir() -> Path:
+    """``$ROCKARCH_CACHE``, else ``$XDG_CACHE_HOME/rockarch``, else ``~/.cache/rockarch``."""
+    env = os.environ.get("ROCKARCH_CACHE")
+    if env:
+        return Path(env).expanduser()
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg).expanduser() if xdg else Path.home() / ".cache"
+    return base / "rockarch"
+
+
+class Store:
+    """Finished chunks on disk, one file per chunk, named by :func:`chunk_key`.
+
+    ``root/chunks/ab/abcdef….npz``: a magic line, the SHA-256 of (key + payload), then the
+    payload (an uncompressed ``.npz`` of ``overturned`` and ``max_response``). Files are
+    written to a temporary name and renamed, so a killed sweep leaves whole files only;
+    a file whose checksum (or shape) does not match is reported through ``report``,
+    deleted and recomputed.
+
+    Attributes ``reused``, ``computed`` and ``corrupt`` count chunks since creation.
+    """
+
+    def __init__(self, root=None, *, report: Callable[[str], None] | None = None) -> None:
+        self.root = Path(root).expanduser() if root is not None else default_store_dir()
+        self.report = report if report is not None else _warn
+        self.reused = 0
+        self.computed = 0
+        self.corrupt = 0
+        chunks = self.root / "chunks"
+        try:
+            chunks.mkdir(parents=True, exist_ok=True)
+            fd, probe = tempfile.mkstemp(dir=chunks, prefix=".probe-")
+            os.close(fd)
+            os.unlink(probe)
+        except OSError as exc:
+            raise ValueError(f"{self.root}: store directory is not writable "
+                             f"({exc.strerror or exc})") from None
+
+    def __repr__(self) -> str:
+        return f"Store({str(self.root)!r})"
+
+    def path(self, key: str) -> Path:
+        return self.root / "chunks" / key[:2] / f"{key}.npz"
+
+    def get(self, key: str, shape: tuple) -> tuple[np.ndarray, np.ndarray] | None:
+        """The stored result of chunk ``key`` (arrays of ``shape``), or None."""
+        path = self.path(key)
+        try:
+            data = path.read_bytes()
+        except FileNotFoundError:
+            return None
+        except OSError as exc:  # a directory or an unreadable file where a chunk belongs
+            data = exc
+        try:
+            if isinstance(data, OSError):
+                raise data
+            if not data.startswith(_MAGIC):
+                raise ValueError("bad header")
+            digest = data[len(_MAGIC):len(_MAGIC) + 64]
+            payload = data[len(_MAGIC) + 65:]
+            if hashlib.sha256(key.encode() + payload).hexdigest().encode() != digest:
+                raise ValueError("checksum mismatch")
+            with np.load(io.BytesIO(payload), allow_pickle=False) as z:
+                over, resp = z["overturned"], z["max_response"]
+            if over.shape != tuple(shape) or resp.shape != tuple(shape) \
+                    or over.dtype != np.bool_ or resp.dtype != np.float64:
+                raise ValueError("unexpected arrays")
+        except Exception as exc:  # noqa: BLE001 - any damage means: recompute
+            self.corrupt += 1
+            self.report(f"store chunk {path} is corrupt ({exc}); recomputing it")
+            with contextlib.suppress(OSError):
+                path.unlink(missing_ok=True)
+            return None
+        self.reused += 1
+        return over, resp
+
+    def put(self, key: str, over: np.ndarray, resp: np.ndarray) -> None:
+        """Write chunk ``key`` atomically."""
+        buf = io.BytesIO()
+        np.savez(buf, overturned=np.asarray(over, dtype=bool),
+                 max_response=np.asarray(resp, dtype=np.float64))
+        payload = buf.getvalue()
+        digest = hashlib.sha256(key.encode() + payload).hexdigest().encode()
+        path = self.path(key)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{key[:16]}-", suffix=".part")
+        try:
+            with os.fdopen(fd, "wb") as f:
+                f.write(_MAGIC + digest + b"\n" + payload)
+            os.replace(tmp, path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+        self.computed += 1
+
+    def summary(self) -> str:
+        return (f"store {self.root}: {self.reused} chunks reused, {self.computed} computed"
+                + (f", {self.corrupt} corrupt (recomputed)" if self.corrupt else ""))
+
+
+def _warn(message: str) -> None:
+    warnings.warn(message, StoreWarning, stacklevel=3)
+
+
+def as_store(store) -> Store | None:
+    """None/False → no store; True → the default directory; a path → a store there."""
+    if store is None or store is False:
+        return None
+    if store is True:
+        return Store()
+    if isinstance(store, Store):
+        return store
+    return Store(store)
+
+
+
+
+@dataclass(frozen=True)
+class StoreInfo:
+    """What a store directory holds: ``chunks`` finished chunk files of ``size`` bytes in
+    total (``exists`` False: the directory has not been created yet)."""
+
+    root: Path
+    exists: bool
+    chunks: int
+    size: int
+
+    def as_dict(self) -> dict:
+        return {"store": str(self.root), "exists": self.exists, "chunks": self.chunks,
+                "bytes": self.size}
+
+
+def _store_files(root: Path):
+    """(path, is_chunk) of every file that a store wrote under ``root/chunks``."""
+    chunks = root / "chunks"
+    if not chunks.is_dir():
+        return
+    for sub in sorted(chunks.iterdir()):
+        if not (sub.is_dir() and _SUBDIR_NAME.match(sub.name)):
+            continue
+        for f in sorted(sub.iterdir()):
+            if _CHUNK_NAME.match(f.name) and f.is_file():
+                yield f, True
+            elif _PART_NAME.match(f.name) and f.is_file():
+                yield f, False
+
+
+def _root(root) -> Path:
+    return Path(root).expanduser() if root is not None else default_store_dir()
+
+
+def store_info(root=None) -> StoreInfo:
+    """Chunks and bytes of the store at ``root`` (None: the default directory); reads only."""
+    root = _root(root)
+    if root.exists() and not root.is_dir():
+        raise ValueError(f"{root}: is a file, not a store directory")
+    n = size = 0
+    for f, is_chunk in _store_files(root):
+        n += is_chunk
+        size += f.stat().st_size
+    return StoreInfo(root, root.is_dir(), n, size)
+
+
+def clear_store(root=None) -> StoreInfo:
+    """Delete every chunk (and unfinished temporary file) of the store at ``root`` and its
+    emptied sub-folders; other files are left alone. Returns what was removed."""
+    root = _root(root)
+    removed = store_info(root)
+    try:
+        for f, _ in _store_files(root):
+            f.unlink(missing_ok=True)
+        chunks = root / "chunks"
+        for sub in sorted(chunks.iterdir()) if chunks.is_dir() else []:
+            if sub.is_dir() and _SUBDIR_NAME.match(sub.name):
+                with contextlib.suppress(OSError):  # not empty: someone else's files
+                    sub.rmdir()
+    except OSError as exc:
+        raise ValueError(f"{root}: cannot clear the store ({exc.strerror or exc})") from None
+    return removed

@@ -1,0 +1,458 @@
+"""Record suites: a folder (or list) of strong-motion records with their metadata.
+
+A suite is what an engineer downloads from the PEER NGA-West2 database: ``.AT2`` files and a
+``_SearchResults.csv`` listing each record's RSN, event, station, magnitude, distance, Vs30
+and scale factor. :func:`read_suite` reads such a folder (or any list of ``.AT2`` and
+two-column files; the csv is optional) into a :class:`Suite` of :class:`SuiteRecord`.
+Without the csv, event, station and component come from the ``.AT2`` header line
+``EVENT, DATE, STATION, COMPONENT``. Format and matching rules: docs/sites.md.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import re
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from rockarch.core.constants import G_STANDARD
+from rockarch.core.paths import atomic_write
+from rockarch.motion import intensity
+from rockarch.motion.records import read_record
+from rockarch.motion.signals import GroundMotion
+from rockarch.motion.velocity_pulse import baker_pulse
+
+#: File suffixes read from a folder as two-column records (``.AT2`` is always read).
+TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
+#: Name of the NGA-West2 metadata file in a downloaded folder.
+SEARCH_RESULTS = "_SearchResults.csv"
+
+# csv column -> field: first header (lower case, spaces squeezed) that starts with a key wins
+_COLUMNS = {
+    "rsn": ("record sequence number", "rsn"),
+    "scale_factor": ("scale factor",),
+    "event": ("earthquake name", "event"),
+    "year": ("year",),
+    "station": ("station name", "station"),
+    "magnitude": ("magnitude",),
+    "mechanism": ("mechanism",),
+    "rjb": ("rjb",),
+    "rrup": ("rrup",),
+    "vs30": ("vs30",),
+    "h1": ("horizontal-1 acc. filename", "horizontal-1"),
+    "h2": ("horizontal-2 acc. filename", "horizontal-2"),
+    "v": ("vertical acc. filename", "vertical"),
+}
+_FLOATS = ("scale_factor", "magnitude", "rjb", "rrup", "vs30")
+_RSN_NAME = re.compile(r"^RSN(\d+)[_\-]", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class SuiteRecord:
+    """One record of a suite and its metadata (``None`` where unknown).
+
+    ``motion`` is in m/s²; if ``scaled`` it is the file's record times ``scale_factor``.
+    ``rrup``, ``rjb`` in km, ``vs30`` in m/s.
+    """
+
+    name: str
+    motion: GroundMotion
+    path: str | None = None
+    rsn: int | None = None  # NGA-West2 record sequence number
+    event: str | None = None  # earthquake name
+    year: int | None = None
+    station: str | None = None
+    component: str | None = None  # e.g. "180" or "H1"
+    magnitude: float | None = None  # moment magnitude Mw
+    mechanism: str | None = None  # fault mechanism
+    rjb: float | None = None  # Joyner–Boore distance [km]
+    rrup: float | None = None  # rupture distance [km]
+    vs30: float | None = None  # time-averaged shear-wave velocity of the top 30 m [m/s]
+    scale_factor: float | None = None
+    scaled: bool = False
+
+    @property
+    def dt(self) -> float:
+        """Sampling step [s] (mean knot spacing)."""
+        t = self.motion.t
+        return float((t[-1] - t[0]) / (t.size - 1))
+
+    @property
+    def duration(self) -> float:
+        """Duration of the record [s]."""
+        return float(self.motion.t[-1] - self.motion.t[0])
+
+    def metadata(self) -> dict:
+        """Metadata as a plain dict (no motion)."""
+        return {"name": self.name, "path": self.path, "rsn": self.rsn, "event": self.event,
+                "year": self.year, "station": self.station, "component": self.component,
+                "magnitude": self.magnitude, "mechanism": self.mechanism, "rjb": self.rjb,
+                "rrup": self.rrup, "vs30": self.vs30, "scale_factor": self.scale_factor,
+                "scaled": self.scaled, "dt": self.dt, "duration": self.duration,
+                "npts": int(self.motion.t.size)}
+
+
+@dataclass(frozen=True)
+class Suite:
+    """An ordered set of records with metadata; ``csv`` is the metadata file used, if any."""
+
+    records: tuple[SuiteRecord, ...]
+    csv: str | None = None
+    notes: tuple[str, ...] = field(default=(), compare=False)
+
+    def __post_init__(self) -> None:
+        recs = tuple(self.records)
+        if not recs:
+            raise ValueError("a suite needs at least one record")
+        object.__setattr__(self, "records", recs)
+
+    def __len__(self) -> int:
+        return len(self.records)
+
+    def __iter__(self) -> Iterator[SuiteRecord]:
+        return iter(self.records)
+
+    def __getitem__(self, k: int) -> SuiteRecord:
+        return self.records[k]
+
+    @property
+    def names(self) -> list[str]:
+        """The records' names (file names for records read from files)."""
+        return [r.name for r in self.records]
+
+    @property
+    def motions(self) -> list[GroundMotion]:
+        """The records' ground motions [m/s²]."""
+        return [r.motion for r in self.records]
+
+    def scaled(self) -> Suite:
+        """The suite with each record multiplied by its csv scale factor (records without
+        one, or already scaled, are unchanged)."""
+        out = []
+        for r in self.records:
+            if r.scaled or r.scale_factor is None:
+                out.append(r)
+            else:
+                out.append(replace(r, motion=r.motion.scaled(r.scale_factor), scaled=True))
+        return replace(self, records=tuple(out))
+
+
+def from_motions(motions: Sequence[GroundMotion], names: Sequence[str] | None = None
+                 ) -> Suite:
+    """A suite of in-memory motions (synthetic or pulses), named by ``names`` or by the
+    motions' own names."""
+    motions = list(motions)
+    names = [m.name for m in motions] if names is None else list(names)
+    if len(names) != len(motions):
+        raise ValueError(f"{len(names)} names for {len(motions)} motions")
+    return Suite(tuple(SuiteRecord(name=n, motion=m) for n, m in zip(names, motions,
+                                                                       strict=True)))
+
+
+# --- files and folders ------------------------------------------------------------------------
+
+def _is_record_file(p: Path) -> bool:
+    name = p.name.lower()
+    if name.startswith(("_", ".")) or "searchresults" in name or name.startswith("readme"):
+        return False
+    return p.suffix.lower() == ".at2" or p.suffix.lower() in TWO_COLUMN_SUFFIXES
+
+
+def record_files(sources) -> tuple[list[Path], list[Path]]:
+    """Expand files and folders into record files and the metadata csv files found.
+
+    A folder contributes its ``.AT2`` files and its two-column files (suffixes
+    :data:`TWO_COLUMN_SUFFIXES`, not starting with ``_``), sorted by name, and its
+    ``_SearchResults.csv`` if present. Files given explicitly are taken as they are (a file
+    named ``*SearchResults*.csv`` is taken as metadata).
+    """
+    files: list[Path] = []
+    metas: list[Path] = []
+    for src in ([sources] if isinstance(sources, (str, Path)) else list(sources)):
+        p = Path(src)
+        if p.is_dir():
+            found = sorted((q for q in p.iterdir() if q.is_file() and _is_record_file(q)),
+                           key=lambda q: q.name)
+            if not found:
+                raise ValueError(f"{p}: folder holds no record (.AT2 or two-column "
+                                 f"{'/'.join(TWO_COLUMN_SUFFIXES)})")
+            files.extend(found)
+            metas.extend(q for q in sorted(p.iterdir())
+                         if q.is_file() and q.name.lower().endswith("searchresults.csv"))
+        elif p.is_file():
+            (metas if "searchresults" in p.name.lower() else files).append(p)
+        else:
+            raise ValueError(f"{p}: no such file or folder")
+    if not files:
+        raise ValueError("give at least one record (file or folder of records)")
+    names = [f.name for f in files]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        same = [f for f in files if f.name == dup[0]]
+        if len({f.resolve() for f in same}) == 1:
+            raise ValueError(f"{same[0]}: the same record is given twice (a file, or a file "
+                             "inside a folder also given): give each record once")
+        raise ValueError(f"two records share the file name {dup[0]!r}: rename one")
+    return files, metas
+
+
+# --- NGA-West2 _SearchResults.csv -------------------------------------------------------------
+
+def _norm(text: str) -> str:
+    return " ".join(text.strip().lower().split())
+
+
+def _number(path, line: int, col: str, text: str, kind=float):
+    s = text.strip()
+    if s in ("", "-", "--", "---", "nan", "n/a"):
+        return None
+    try:
+        v = kind(float(s)) if kind is int else kind(s)
+    except (ValueError, OverflowError):  # OverflowError: int(inf)
+        raise ValueError(f"{path}: line {line}: column {col!r} should be a number, found "
+                         f"{s!r}") from None
+    if isinstance(v, float) and not math.isfinite(v):
+        raise ValueError(f"{path}: line {line}: column {col!r} is not finite ({s!r})")
+    return v
+
+
+def read_search_results(path: str | Path) -> list[dict]:
+    """Rows of the metadata table of an NGA-West2 ``_SearchResults.csv``.
+
+    The file starts with a free-text header block and holds several tables; the metadata
+    table is the one whose header row names a ``Record Sequence Number`` (or ``RSN``)
+    column; it ends at the first blank line or the first row whose RSN is not an integer.
+    Each row becomes a dict with keys ``rsn``, ``scale_factor``, ``event``, ``year``,
+    ``station``, ``magnitude``, ``mechanism``, ``rjb``, ``rrup``, ``vs30``, ``h1``, ``h2``,
+    ``v`` (file names; absent columns give ``None``).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="latin-1")
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    rows = list(csv.reader(io.StringIO(text), skipinitialspace=True))  # blank line: []
+    start = None
+    for k, row in enumerate(rows):
+        cells = [_norm(c) for c in row]
+        if any(c in ("record sequence number", "rsn") for c in cells):
+            start = k
+            break
+    if start is None:
+        raise ValueError(f"{path}: not an NGA-West2 search-results file (no header row with "
+                         "a 'Record Sequence Number' column)")
+    header = [_norm(c) for c in rows[start]]
+    index = {}
+    for key, names in _COLUMNS.items():
+        for j, h in enumerate(header):
+            if any(h.startswith(n) for n in names):
+                index[key] = j
+                break
+    if "rsn" not in index:  # pragma: no cover - guaranteed by the header search
+        raise ValueError(f"{path}: no 'Record Sequence Number' column")
+    out = []
+    line_of = [k + 1 for k in range(len(rows))]  # PEER cells hold no newlines
+    for k in range(start + 1, len(rows)):
+        row = rows[k]
+        if not row or all(not c.strip() for c in row):
+            break
+        rsn_text = row[index["rsn"]].strip() if index["rsn"] < len(row) else ""
+        if not re.fullmatch(r"\d+", rsn_text):
+            break
+        if len(row) < len(header) - 1:
+            raise ValueError(f"{path}: line {line_of[k]}: {len(row)} columns, the header has "
+                             f"{len(header)} (truncated row?)")
+        rec = {}
+        for key in _COLUMNS:
+            j = index.get(key)
+            cell = row[j] if j is not None and j < len(row) else ""
+            if key in _FLOATS:
+                rec[key] = _number(path, line_of[k], header[j] if j is not None else key, cell)
+            elif key in ("rsn", "year"):
+                rec[key] = _number(path, line_of[k], key, cell, int)
+            else:
+                s = cell.strip().strip("\\/")
+                rec[key] = None if not s or set(s) <= {"-"} else s
+        if rec["scale_factor"] is not None and rec["scale_factor"] <= 0:
+            raise ValueError(f"{path}: line {line_of[k]}: scale factor must be > 0, found "
+                             f"{rec['scale_factor']}")
+        out.append(rec)
+    if not out:
+        raise ValueError(f"{path}: the metadata table (line {line_of[start]}) has no record "
+                         "rows")
+    return out
+
+
+def _match(name: str, rows: list[dict]) -> tuple[dict | None, str | None]:
+    """The csv row of a record file and its component (H1, H2, V): by file name, then RSN."""
+    low = name.lower()
+    stem = Path(low).stem
+    for row in rows:
+        for comp in ("h1", "h2", "v"):
+            fname = row.get(comp)
+            if fname and Path(fname.lower()).name == low:
+                return row, comp.upper()
+    m = _RSN_NAME.match(name)
+    if m is None:
+        return None, None
+    rsn = int(m.group(1))
+    cands = [r for r in rows if r["rsn"] == rsn]
+    if not cands:
+        return None, None
+    row = cands[0]
+    for comp in ("h1", "h2", "v"):  # a renamed file whose stem extends the csv's stem
+        fname = row.get(comp)
+        if fname and stem.startswith(Path(fname.lower()).stem):
+            return row, comp.upper()
+    comp = {"hor1": "H1", "hor2": "H2", "up": "V", "ver": "V"}
+    for key, val in comp.items():
+        if stem.endswith(f"-{key}") or stem.endswith(f"_{key}"):
+            return row, val
+    return row, None
+
+
+def _header_fields(motion: GroundMotion) -> dict:
+    """Event, year, station, component from an NGA ``.AT2`` title line
+    ``EVENT, M/D/YYYY, STATION, COMPONENT``."""
+    title = motion.meta.get("title") if motion.meta.get("format") == "AT2" else None
+    if not title:
+        return {}
+    parts = [p.strip() for p in title.split(",")]
+    if len(parts) < 4:
+        return {"event": title.strip() or None}
+    year = re.search(r"(\d{4})\s*$", parts[1])
+    return {"event": parts[0] or None, "year": int(year.group(1)) if year else None,
+            "station": ", ".join(parts[2:-1]) or None, "component": parts[-1] or None}
+
+
+#: A record whose PGA lies outside this range [m/s²] has its units wrong (site-oas: an
+#: error; suites: a note, printed as a warning by the CLI).
+PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
+
+
+#: Component names (AT2 header, lower case) of vertical records.
+VERTICAL = ("up", "dwn", "dn", "down", "v", "ver", "vert", "vertical", "z")
+
+
+def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
+               search_results: str | Path | None = None, vertical: bool = False) -> Suite:
+    """Read a suite from files and folders (see :func:`record_files`).
+
+    Parameters
+    ----------
+    sources : path or list of paths
+        Record files (``.AT2`` or two-column) and/or folders of them.
+    units : str, optional
+        Units of two-column records (m/s2 by default; ``.AT2`` state their own).
+    apply_scale : bool
+        Multiply each record by the scale factor of its csv row.
+    search_results : path, optional
+        The NGA-West2 metadata csv; by default the ``_SearchResults.csv`` found in a folder
+        given in ``sources`` (at most one).
+    vertical : bool
+        Keep vertical components (csv component V, or an ``.AT2`` header component such as
+        ``UP``); by default they are left out and listed in ``notes`` (rocking structures
+        are assessed under horizontal ground motion).
+
+    Records without a csv row keep the metadata of their ``.AT2`` header; with
+    ``apply_scale`` and a csv, a record missing from the csv is an error (its scale is
+    unknown). A record missing from the csv or with an implausible PGA (outside
+    :data:`PGA_RANGE`: wrong units?) is listed in ``notes``.
+    """
+    files, metas = record_files(sources)
+    if search_results is not None:
+        metas = [Path(search_results)]
+        if not metas[0].is_file():
+            raise ValueError(f"{search_results}: no such file")
+    if len(metas) > 1:
+        raise ValueError(f"several search-results files ({', '.join(map(str, metas))}): "
+                         "give one with --search-results")
+    rows = read_search_results(metas[0]) if metas else []
+    if apply_scale and not rows:
+        raise ValueError("--apply-scale needs an NGA-West2 _SearchResults.csv (none found)")
+    records, notes = [], []
+    for f in files:
+        motion = read_record(f, units=units)
+        fields = _header_fields(motion)
+        row, comp = _match(f.name, rows) if rows else (None, None)
+        if row is not None:
+            fields.update({k: row[k] for k in ("rsn", "event", "year", "station", "magnitude",
+                                               "mechanism", "rjb", "rrup", "vs30",
+                                               "scale_factor") if row[k] is not None})
+            fields["component"] = fields.get("component") or comp
+        elif rows:
+            if apply_scale:
+                raise ValueError(f"{f.name}: not listed in {metas[0].name} (no RSN match), so "
+                                 "its scale factor is unknown")
+            notes.append(f"{f.name}: not listed in {metas[0].name}")
+        if not vertical and (comp == "V" or str(fields.get("component", "")).strip().lower()
+                             in VERTICAL):
+            notes.append(f"{f.name}: vertical component left out (--vertical keeps it)")
+            continue
+        m = _RSN_NAME.match(f.name)
+        if "rsn" not in fields and m:
+            fields["rsn"] = int(m.group(1))
+        rec = SuiteRecord(name=f.name, motion=motion, path=str(f), **fields)
+        records.append(rec)
+        lo, hi = PGA_RANGE
+        if not lo <= motion.pga <= hi:
+            notes.append(f"{f.name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
+                         "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
+    if not records:
+        raise ValueError("every record is a vertical component: give --vertical to use them")
+    suite = Suite(tuple(records), csv=str(metas[0]) if metas else None, notes=tuple(notes))
+    return suite.scaled() if apply_scale else suite
+
+
+def describe(suite: Suite, periods: Sequence[float] | None = None,
+             damping: float | None = None) -> list[dict]:
+    """Metadata and intensity measures of every record (``rockarch records info``): one dict
+    per record, :meth:`SuiteRecord.metadata` plus the fields of
+    :class:`rockarch.motion.intensity.IntensityMeasures` (``sa`` aligned with ``periods``) and the
+    Baker (2007) pulse classification (``pulse_indicator``, ``tp`` [s], ``pulse_like``,
+    ``classification``, :mod:`rockarch.motion.velocity_pulse`)."""
+
+    per = intensity.PERIODS if periods is None else periods
+    zeta = intensity.DAMPING if damping is None else damping
+    out = []
+    for rec in suite:
+        d = rec.metadata()
+        d.update(intensity.measures(rec.motion, per, zeta).to_dict())
+        try:
+            pulse = baker_pulse(rec.motion).to_dict()
+        except ValueError:  # a record shorter than the shortest pulse period
+            pulse = {"pulse_indicator": None, "tp": None, "pulse_like": None,
+                     "classification": "-"}
+        d.update(pulse_indicator=pulse["pulse_indicator"], tp=pulse["tp"],
+                 pulse_like=pulse["pulse_like"], pulse_class=pulse["classification"])
+        out.append(d)
+    return out
+
+
+def write_at2(path: str | Path, motion: GroundMotion, *, event: str = "", date: str = "",
+              station: str = "", component: str = "") -> Path:
+    """Write a uniformly sampled motion as a PEER-layout ``.AT2`` file (units of g, 5
+    values a line, 7 significant digits), readable by :func:`rockarch.motion.records.read_at2`.
+    The title line is ``EVENT, DATE, STATION, COMPONENT`` as in NGA-West2 files."""
+    t = np.asarray(motion.t)
+    dt = float((t[-1] - t[0]) / (t.size - 1))
+    if abs(t[0]) > 1e-12 or np.any(np.abs(np.diff(t) - dt) > 1e-9 * max(dt, 1.0)):
+        raise ValueError(f"{motion.name}: only a uniformly sampled motion starting at t = 0 "
+                         "can be written as .AT2")
+    vals = np.asarray(motion.a) / G_STANDARD
+    rows = [" ".join(f"{v:15.7E}" for v in vals[k:k + 5]) for k in range(0, vals.size, 5)]
+    for name, text in (("event", event), ("station", station), ("component", component)):
+        if "," in text or "\n" in text:
+            raise ValueError(f"{name} may not contain commas or newlines: {text!r}")
+    lines = ["ROCKARCH RECORD (PEER NGA .AT2 LAYOUT)",
+             f"{event}, {date}, {station}, {component}",
+             "ACCELERATION TIME SERIES IN UNITS OF G",
+             f"NPTS={vals.size:7d}, DT={dt:10.7f} SEC", *rows]
+
+    text = "\n".join(lines) + "\n"
+    return atomic_write(Path(path), lambda tmp: tmp.write_text(text, encoding="latin-1"))

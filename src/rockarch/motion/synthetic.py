@@ -1,0 +1,373 @@
+"""Seeded synthetic ground motions: the modulated, time-varying filtered white-noise model
+of Rezaeian & Der Kiureghian (2008, 2010), for tests and demos of suites of 50+ records.
+
+The model (docs/theory.md Eqs. (11.8)–(11.11)):
+
+* a unit-variance process: white noise through a linear filter whose frequency ω_f(τ) =
+  ω_mid + ω'(τ − t_mid) drifts in time and whose damping ζ_f is constant, normalised by its
+  standard deviation at each t;
+* times a gamma-shaped modulating function q(t) = α1 t^(α2−1) e^(−α3 t), whose three
+  parameters follow from the expected Arias intensity Ia, the significant duration D5–95
+  and the time t_mid at which 45 % of Ia is reached (for this q the Husid function is a
+  gamma distribution function, so the mapping is exact);
+* a critically damped high-pass oscillator (corner f_c) that removes the residual velocity
+  and displacement (Rezaeian & Der Kiureghian 2010).
+
+:func:`generate` draws one record for given model parameters; :func:`synthetic_suite` draws
+``n`` records whose parameters are themselves random (a documented demo distribution, see
+:data:`PARAMETER_RANGES`); both are reproducible from ``seed``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numba as nb
+import numpy as np
+from scipy import optimize, special, stats
+
+from rockarch.core.constants import G
+from rockarch.core.paths import check_output_dir, write_text
+from rockarch.core.validate import in_range, positive
+from rockarch.motion.intensity import pgv
+from rockarch.motion.signals import GroundMotion
+from rockarch.motion.suite import from_motions, write_at2
+
+#: Default time step of synthetic records [s].
+DT = 0.01
+#: Default high-pass corner [Hz] (a critically damped oscillator, RDK 2010).
+F_CORNER = 0.2
+#: Lowest filter frequency [Hz]: ω_f(τ) is clipped here when ω' would make it smaller.
+F_FLOOR = 0.3
+#: Truncation of the filter's impulse response: exp(−ζ_f ω_f s) below this is dropped.
+IRF_CUTOFF = 1e-6
+#: Quantile of the Husid (gamma) function at which a record ends.
+END_QUANTILE = 0.9995
+
+
+@dataclass(frozen=True)
+class RDKParameters:
+    """Parameters of one record of the Rezaeian–Der Kiureghian model (SI units).
+
+    arias : expected Arias intensity Ia [m/s]; d5_95 : significant duration [s];
+    t_mid : time at 45 % of Ia [s]; f_mid : filter frequency at t_mid [Hz];
+    f_slope : its rate of change [Hz/s]; zeta_f : filter damping ratio.
+    """
+
+    arias: float
+    d5_95: float
+    t_mid: float
+    f_mid: float
+    f_slope: float
+    zeta_f: float
+
+    def __post_init__(self) -> None:
+        for name, value in (("Arias intensity", self.arias), ("D5-95", self.d5_95),
+                            ("t_mid", self.t_mid), ("f_mid", self.f_mid)):
+            positive(name, value)
+        in_range("f_slope", self.f_slope, -5.0, 5.0)
+        in_range("zeta_f", self.zeta_f, 0.0, 1.0, lo_open=True, hi_open=True)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _quantile_ratio(k: float) -> float:
+    q = stats.gamma.ppf([0.05, 0.45, 0.95], k)
+    return float((q[2] - q[0]) / q[1])
+
+
+#: Shape range of the gamma Husid function that :func:`modulation` can represent.
+_K_RANGE = (0.3, 2000.0)
+
+
+def modulation(p: RDKParameters, g: float = G) -> tuple[float, float, float]:
+    """(α1, α2, α3) of q(t) = α1 t^(α2−1) e^(−α3 t) with the expected Ia, D5–95 and t_mid.
+
+    q² ∝ t^(k−1) e^(−λt) with k = 2α2 − 1 and λ = 2α3 is a gamma density, so the Husid
+    function is the gamma distribution function: D5–95/t_mid fixes k, then λ =
+    G⁻¹(0.45; k)/t_mid, and α1 follows from Ia = π/(2g) α1² Γ(k)/λ^k (Eq. (11.9)).
+    """
+    target = p.d5_95 / p.t_mid
+    lo, hi = _quantile_ratio(_K_RANGE[1]), _quantile_ratio(_K_RANGE[0])
+    if not lo < target < hi:
+        raise ValueError(f"D5-95/t_mid = {target:.3g} cannot be represented by the gamma "
+                         f"modulating function (need {lo:.3g} < D5-95/t_mid < {hi:.3g})")
+    log_k = optimize.brentq(lambda x: _quantile_ratio(math.exp(x)) - target,
+                            math.log(_K_RANGE[0]), math.log(_K_RANGE[1]), xtol=1e-12)
+    k = math.exp(log_k)
+    lam = float(stats.gamma.ppf(0.45, k)) / p.t_mid
+    log_a1_sq = math.log(p.arias * 2.0 * g / math.pi) + k * math.log(lam) - special.gammaln(k)
+    return math.exp(0.5 * log_a1_sq), (k + 1.0) / 2.0, lam / 2.0
+
+
+@nb.njit(cache=True)
+def _filtered_noise(u, dt, omega, zeta, cutoff):
+    """Σ_i h(t_k − t_i, ω_i) u_i / sqrt(Σ_i h²) at every t_k (Eq. (11.8)).
+
+    The impulse response of pulse i is h(s) = ω_i/√(1−ζ²) e^(−ζω_i s) sin(ω_i √(1−ζ²) s),
+    marched by one complex rotation per step and dropped once e^(−ζω_i s) < ``cutoff``.
+    """
+    n = u.shape[0]
+    num = np.zeros(n)
+    den = np.zeros(n)
+    sq = math.sqrt(1.0 - zeta * zeta)
+    for i in range(n - 1):
+        w = omega[i]
+        decay = math.exp(-zeta * w * dt)
+        c = math.cos(w * sq * dt) * decay
+        s = math.sin(w * sq * dt) * decay
+        m = min(n - 1 - i, int(math.ceil(-math.log(cutoff) / (zeta * w * dt))))
+        zr = 1.0  # e^((−ζ + i√(1−ζ²)) ω s) at s = 0
+        zi = 0.0
+        amp = w / sq
+        for j in range(1, m + 1):
+            zr, zi = zr * c - zi * s, zr * s + zi * c
+            h = amp * zi
+            num[i + j] += h * u[i]
+            den[i + j] += h * h
+    out = np.zeros(n)
+    for k in range(n):
+        if den[k] > 0.0:
+            out[k] = num[k] / math.sqrt(den[k])
+    return out
+
+
+@nb.njit(cache=True)
+def _high_pass(a, dt, omega_c):
+    """ü of ü + 2ω_c u̇ + ω_c² u = a (critically damped, from rest), by the average
+    acceleration (trapezoidal) rule: unconditionally stable, second order (Eq. (11.11))."""
+    n = a.shape[0]
+    out = np.empty(n)
+    u = 0.0
+    v = 0.0
+    acc = a[0]
+    out[0] = acc
+    c = 2.0 * omega_c
+    k = omega_c * omega_c
+    for i in range(1, n):
+        # solve for acc_new: acc_new + c v_new + k u_new = a[i] with trapezoidal updates
+        v_pred = v + 0.5 * dt * acc
+        u_pred = u + dt * v + 0.25 * dt * dt * acc
+        acc_new = (a[i] - c * v_pred - k * u_pred) / (1.0 + 0.5 * dt * c + 0.25 * dt * dt * k)
+        v = v_pred + 0.5 * dt * acc_new
+        u = u_pred + 0.25 * dt * dt * acc_new
+        acc = acc_new
+        out[i] = acc
+    return out
+
+
+def generate(params: RDKParameters, seed: int | np.random.Generator | None = None, *,
+             dt: float = DT, f_corner: float = F_CORNER, g: float = G,
+             name: str | None = None) -> GroundMotion:
+    """One synthetic record of the RDK model with ``params`` [m/s²], reproducible from
+    ``seed``. The record lasts until the Husid function reaches :data:`END_QUANTILE`."""
+    rng = np.random.default_rng(seed)
+    dt = positive("dt", dt)
+    a1, a2, a3 = modulation(params, g)
+    k, lam = 2.0 * a2 - 1.0, 2.0 * a3
+    t_end = float(stats.gamma.ppf(END_QUANTILE, k)) / lam
+    n = int(math.ceil(t_end / dt)) + 1
+    if n > 200_000:
+        raise ValueError(f"the record would need {n} samples (t_end = {t_end:.4g} s at dt = "
+                         f"{dt:g} s): shorten D5-95/t_mid or enlarge dt")
+    t = np.arange(n) * dt
+    omega = 2 * math.pi * np.maximum(params.f_mid + params.f_slope * (t - params.t_mid),
+                                     F_FLOOR)
+    if 2 * math.pi * params.f_mid * dt > 0.5 * math.pi:
+        raise ValueError(f"f_mid = {params.f_mid:g} Hz is above a quarter of the sampling "
+                         f"rate 1/dt = {1 / dt:g} Hz: use a smaller dt")
+    noise = _filtered_noise(rng.standard_normal(n), dt, omega, params.zeta_f, IRF_CUTOFF)
+    q = np.zeros(n)  # the filtered noise is 0 at t = 0, so is the record
+    q[1:] = a1 * np.exp((a2 - 1.0) * np.log(t[1:]) - a3 * t[1:])
+    acc = q * noise
+    if f_corner > 0:
+        acc = _high_pass(acc, dt, 2 * math.pi * positive("f_corner", f_corner))
+    meta = {"format": "synthetic", "model": "Rezaeian & Der Kiureghian 2008",
+            "dt": dt, "npts": n, **params.to_dict(), "f_corner": f_corner}
+    return GroundMotion(t, acc, name or "RDK synthetic", meta)
+
+
+@dataclass(frozen=True)
+class MPPulse:
+    """Near-fault velocity pulse of Mavroeidis & Papageorgiou (2003), Eq. (11.14):
+    v = (A/2)[1 + cos(2π(t − t0)/(γ Tp))] cos(2π(t − t0)/Tp + ν) for |t − t0| ≤ γTp/2.
+
+    tp : pulse period [s]; amplitude : A [m/s]; gamma : oscillatory character γ > 1;
+    nu : phase ν [rad]; t0 : centre of the pulse [s].
+    """
+
+    tp: float
+    amplitude: float
+    gamma: float
+    nu: float
+    t0: float
+
+    def __post_init__(self) -> None:
+        positive("pulse period", self.tp)
+        positive("pulse amplitude", self.amplitude)
+        in_range("pulse gamma", self.gamma, 1.0, 10.0, lo_open=True)
+        in_range("pulse t0", self.t0, 0.0, math.inf)
+
+    @property
+    def start(self) -> float:
+        """First instant of the pulse [s]."""
+        return self.t0 - 0.5 * self.gamma * self.tp
+
+    @property
+    def end(self) -> float:
+        """Last instant of the pulse [s]."""
+        return self.t0 + 0.5 * self.gamma * self.tp
+
+    def velocity(self, t) -> np.ndarray:
+        """Ground velocity of the pulse [m/s]."""
+        tau = np.asarray(t, dtype=float) - self.t0
+        k = 2 * math.pi / self.tp
+        v = 0.5 * self.amplitude * (1 + np.cos(k * tau / self.gamma)) * np.cos(k * tau + self.nu)
+        return np.where(np.abs(tau) <= 0.5 * self.gamma * self.tp, v, 0.0)
+
+    def acceleration(self, t) -> np.ndarray:
+        """Ground acceleration of the pulse [m/s²] (the derivative of :meth:`velocity`)."""
+        tau = np.asarray(t, dtype=float) - self.t0
+        k = 2 * math.pi / self.tp
+        a = -0.5 * self.amplitude * k * (np.sin(k * tau / self.gamma) * np.cos(k * tau + self.nu)
+                                         / self.gamma
+                                         + (1 + np.cos(k * tau / self.gamma))
+                                         * np.sin(k * tau + self.nu))
+        return np.where(np.abs(tau) <= 0.5 * self.gamma * self.tp, a, 0.0)
+
+
+def add_pulse(motion: GroundMotion, pulse: MPPulse) -> GroundMotion:
+    """The motion (uniformly sampled from t = 0) plus the pulse's acceleration, extended
+    with zeros if the pulse ends after it; the pulse's parameters go to ``meta``."""
+    t = np.asarray(motion.t)
+    dt = float(t[1] - t[0])
+    if pulse.start < t[0]:
+        raise ValueError(f"the pulse starts at {pulse.start:.3g} s, before the record")
+    n = max(t.size, int(math.ceil(pulse.end / dt)) + 2)
+    tt = t[0] + np.arange(n) * dt
+    acc = np.zeros(n)
+    acc[:t.size] = motion.a
+    meta = {**motion.meta, **{f"pulse_{k}": v for k, v in asdict(pulse).items()}}
+    return GroundMotion(tt, acc + pulse.acceleration(tt), motion.name, meta)
+
+
+#: Demo distribution of pulse parameters (our choice): Tp lognormal (median 2 s, σ_ln 0.5)
+#: clipped to 0.5…8 s, γ uniform 1.5…2.5, ν uniform 0…2π, centre t_mid ± 2 s, amplitude
+#: 1.5…3 × the PGV of the record it is added to and at least 0.35 m/s.
+PULSE_RANGES = {"tp": ("lognormal", 2.0, 0.5), "gamma": ("uniform", 1.5, 2.5),
+                "amplitude_over_pgv": ("uniform", 1.5, 3.0), "amplitude_min": 0.35}
+
+
+def draw_pulse(rng: np.random.Generator, motion: GroundMotion, t_mid: float) -> MPPulse:
+    """A pulse from :data:`PULSE_RANGES` for ``motion`` (whose PGV sets its amplitude)."""
+
+    r = PULSE_RANGES
+    tp = min(max(r["tp"][1] * math.exp(r["tp"][2] * rng.standard_normal()), 0.5), 8.0)
+    gamma = float(rng.uniform(*r["gamma"][1:]))
+    nu = float(rng.uniform(0.0, 2 * math.pi))
+    t0 = max(t_mid + float(rng.uniform(-2.0, 2.0)), 0.5 * gamma * tp)
+    amp = max(float(rng.uniform(*r["amplitude_over_pgv"][1:])) * pgv(motion),
+              r["amplitude_min"])
+    return MPPulse(tp=tp, amplitude=amp, gamma=gamma, nu=nu, t0=t0)
+
+
+#: Demo distribution of the model parameters in :func:`synthetic_suite` (our choice, centred
+#: near the sample means Rezaeian & Der Kiureghian (2010) report for their NGA set):
+#: lognormal (median, σ_ln) for Ia [m/s], D5-95 [s] and f_mid [Hz], uniform ranges for
+#: t_mid/D5-95, f' [Hz/s] and ζ_f.
+PARAMETER_RANGES = {
+    "arias": ("lognormal", 0.3, 0.8),
+    "d5_95": ("lognormal", 15.0, 0.4),
+    "t_mid_over_d5_95": ("uniform", 0.5, 1.0),
+    "f_mid": ("lognormal", 5.0, 0.35),
+    "f_slope": ("uniform", -0.2, 0.05),
+    "zeta_f": ("uniform", 0.1, 0.5),
+}
+
+
+def draw_parameters(rng: np.random.Generator) -> RDKParameters:
+    """One parameter set from :data:`PARAMETER_RANGES` (D5-95 clipped to 5…45 s, f_mid to
+    1…12 Hz)."""
+    r = PARAMETER_RANGES
+
+    def lognormal(key):
+        _, med, beta = r[key]
+        return med * math.exp(beta * rng.standard_normal())
+
+    def uniform(key):
+        _, lo, hi = r[key]
+        return float(rng.uniform(lo, hi))
+
+    arias = lognormal("arias")
+    d = min(max(lognormal("d5_95"), 5.0), 45.0)
+    t_mid = d * uniform("t_mid_over_d5_95")
+    f_mid = min(max(lognormal("f_mid"), 1.0), 12.0)
+    return RDKParameters(arias=arias, d5_95=d, t_mid=t_mid, f_mid=f_mid,
+                         f_slope=uniform("f_slope"), zeta_f=uniform("zeta_f"))
+
+
+def synthetic_motions(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
+                      pulse_fraction: float = 0.0) -> list[GroundMotion]:
+    """``n`` synthetic records named ``rdk-s{seed}-{k:03d}``, parameters drawn from
+    :data:`PARAMETER_RANGES`; the same (n, seed) gives the same records, and the first m of
+    a larger n are the records of n = m. Each record gets a Mavroeidis–Papageorgiou pulse
+    (:data:`PULSE_RANGES`) with probability ``pulse_fraction`` (0: none, 1: every one);
+    the noise part of record k does not depend on ``pulse_fraction``."""
+    n = int(n)
+    if n < 1:
+        raise ValueError(f"need at least one synthetic record, got n = {n}")
+    fraction = in_range("pulse fraction", pulse_fraction, 0.0, 1.0)
+    out = []
+    for k, child in enumerate(np.random.SeedSequence(int(seed)).spawn(n)):
+        rng = np.random.default_rng(child)
+        params = draw_parameters(rng)
+        m = generate(params, rng, dt=dt, f_corner=f_corner, name=f"rdk-s{int(seed)}-{k:03d}")
+        if rng.uniform() < fraction:
+            m = add_pulse(m, draw_pulse(rng, m, params.t_mid))
+        out.append(m)
+    return out
+
+
+def synthetic_suite(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
+                    pulse_fraction: float = 0.0):
+    """A :class:`rockarch.motion.suite.Suite` of ``n`` synthetic records (see
+    :func:`synthetic_motions`); each record's model parameters are in ``motion.meta``."""
+
+    return from_motions(synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
+                                          pulse_fraction=pulse_fraction))
+
+
+#: File listing the model parameters of a written synthetic suite (not read as a record).
+PARAMETERS_FILE = "_synthetic_parameters.csv"
+
+
+def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
+                f_corner: float = F_CORNER, pulse_fraction: float = 0.0) -> list:
+    """Write ``n`` synthetic records as ``.AT2`` files ``rdk-s{seed}-{k:03d}.AT2`` into
+    ``directory`` (created with its missing parents), with their model parameters in
+    :data:`PARAMETERS_FILE`. Returns the record paths."""
+    from pathlib import Path
+
+
+    directory = Path(directory)
+    check_output_dir(directory)
+    # the motions first: a bad n, dt or pulse fraction leaves no folder behind
+    motions = list(synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
+                                     pulse_fraction=pulse_fraction))
+    directory.mkdir(parents=True, exist_ok=True)
+    paths, lines = [], []
+    keys = list(RDKParameters.__dataclass_fields__)
+    pulse_keys = [f"pulse_{k}" for k in MPPulse.__dataclass_fields__]
+    for m in motions:
+        path = write_at2(directory / f"{m.name}.AT2", m,
+                         event=f"Synthetic RDK08 seed {int(seed)}", station=m.name,
+                         component="H")
+        paths.append(path)
+        lines.append(",".join([path.name, *(f"{m.meta[k]:.10g}" for k in keys),
+                               *(f"{m.meta[k]:.10g}" if k in m.meta else ""
+                                 for k in pulse_keys)]))
+    write_text(directory / PARAMETERS_FILE,
+               "\n".join([",".join(["file", *keys, *pulse_keys]), *lines]) + "\n")
+    return paths

@@ -1,0 +1,434 @@
+"""Incremental dynamic analysis (IDA) and lognormal fragility of any rocking system.
+
+For one structure (any :func:`rockarch.systems.system` kind) at one frequency parameter p,
+every record of a suite is scaled up until the structure collapses (docs/theory.md
+Sect. 11.3):
+
+- the scan is the OAS scan of :mod:`rockarch.spectra.oas` on one p: a grid of ratios
+  ap/ap,min, then bisection between the last safe grid value below the first collapse and
+  that collapse, with the same code (so the IDA collapse point of a record *is* its OAS
+  boundary at p times ap,min, Eq. (11.30));
+- safe grid values above the first collapse ("resurrections", safe islands of the record)
+  are counted and reported, never filled in;
+- a record that never collapses up to the scan limit is a right-censored datum;
+- the collapse intensities are fitted by a lognormal distribution by maximum likelihood,
+  censored records included (Eq. (11.31)), with a bootstrap confidence band over records.
+
+Every record is one task of the sweep executor (in-process, local processes or Dask): its
+whole scan and bisection, with no barrier between records; each finished record may be
+kept in the resumable store under its own key (:mod:`rockarch.core.sweep`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from tqdm.auto import tqdm
+
+from rockarch.core import sweep
+from rockarch.core.constants import OAS_TOL, G
+from rockarch.motion.intensity import im_value
+from rockarch.motion.signals import GroundMotion
+from rockarch.risk.record_scan import RecordScan, TaskBar, check_island_step
+from rockarch.spectra import site
+from rockarch.spectra.oas import _grid
+from rockarch.systems import BlockSystem
+
+#: Intensity measures of the IDA (the x axis of the fragility curve).
+IMS = ("pga", "pgv", "sa")
+#: Units of each intensity measure.
+IM_UNITS = {"pga": "m/s2", "pgv": "m/s", "sa": "m/s2"}
+#: Bootstrap resamples of the confidence band unless told otherwise.
+N_BOOTSTRAP = 500
+
+
+# --------------------------------------------------------------------------- the scan
+
+
+def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) -> float:
+    """The record's intensity measure over its PGA (IM scales linearly with the record):
+    1 for ``pga``; PGV/PGA [s] for ``pgv``; Sa(period)/PGA for ``sa`` (5 % damping)."""
+    if im not in IMS:
+        raise ValueError(f"unknown intensity measure {im!r}: choose one of {', '.join(IMS)}")
+    if im != "sa" and period is not None:
+        raise ValueError("--period is for --im sa only")
+    if im == "pga":
+        return 1.0
+    if im == "sa" and period is None:
+        raise ValueError("--im sa needs --period T (seconds)")
+    if im == "sa" and not (math.isfinite(period) and period > 0):
+        raise ValueError(f"--period must be a finite number > 0, got {period}")
+    return im_value(motion, im, period=period) / motion.pga
+
+
+@dataclass(frozen=True)
+class IDAResult:
+    """Collapse points of the records of a suite (docs/theory.md Eq. (11.30)).
+
+    Attributes
+    ----------
+    system, p, ap_min : the structure's name, frequency parameter [1/s] and ap,min [m/s²].
+    im : intensity measure (one of :data:`IMS`).
+    records : record names (file names).
+    ratio : the scan grid of ap/ap,min.
+    overturned : (record, ratio) bool, the scan.
+    ratio_collapse : lowest collapse ratio per record (bisected; NaN: censored).
+    im_scale : the IM of each record scaled to ratio 1, i.e. to PGA = ap,min (IM units).
+    resurrections : per record, safe islands above its first collapse on the grid.
+    tol : bisection tolerance (ratio units).
+    island_step : 1, every grid value run; s > 1, the adaptive scan of
+        :class:`RecordScan` (``overturned`` is True where a value was not run).
+    evaluated : (record, ratio) bool, the values run (None: every one).
+    """
+
+    system: str
+    p: float
+    ap_min: float
+    im: str
+    records: tuple[str, ...]
+    ratio: np.ndarray
+    overturned: np.ndarray
+    ratio_collapse: np.ndarray
+    im_scale: np.ndarray
+    resurrections: np.ndarray
+    tol: float
+    period: float | None = None
+    island_step: int = 1
+    evaluated: np.ndarray | None = None
+
+    @property
+    def censored(self) -> np.ndarray:
+        """Records that did not collapse up to the scan limit."""
+        return ~np.isfinite(self.ratio_collapse)
+
+    @property
+    def im_collapse(self) -> np.ndarray:
+        """Lowest collapse intensity per record (NaN where censored); PGA is
+        ratio·ap,min exactly."""
+        return self.ratio_collapse * self.ap_min * self.im_scale
+
+    @property
+    def im_limit(self) -> np.ndarray:
+        """Intensity of each record at the scan limit (the censoring value)."""
+        return self.ratio[-1] * self.ap_min * self.im_scale
+
+
+def count_resurrections(over: np.ndarray) -> np.ndarray:
+    """Safe islands above the first collapse of each row of a (record, ratio) scan: the
+    number of collapse → safe transitions along the ratio axis."""
+    over = np.asarray(over, dtype=bool)
+    return np.count_nonzero(over[:, :-1] & ~over[:, 1:], axis=1)
+
+
+def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
+        im: str = "pga", period: float | None = None, ratio=None, tol: float = OAS_TOL,
+        progress: bool = False, executor=None, store=None,
+        island_step: int = 1) -> IDAResult:
+    """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
+
+    Parameters
+    ----------
+    system : a system of :func:`rockarch.systems.system` (any kind).
+    motions : the records (their shapes are scaled to PGA = ratio·ap,min).
+    p : frequency parameter [1/s] (the structure's size).
+    names : record names (default the motions' names).
+    im, period : intensity measure (:data:`IMS`; ``sa`` at ``period`` [s]).
+    ratio : scan grid of ap/ap,min (default that of ``rockarch oas``: 1 … 5, 81 values);
+        its last value is the scan limit (censoring).
+    tol, progress, executor, store : as in :func:`rockarch.spectra.oas.compute_oas`; every
+        record is one task (:class:`RecordScan`), run in this process, on local processes
+        or on Dask, and stored as it finishes (the progress bar counts records).
+    island_step : 1 (default) runs every grid value; s > 1 the adaptive scan of
+        :class:`RecordScan`: the same collapse points, safe islands above the first
+        collapse found from every s-th grid value, fewer simulations.
+    """
+    motions = tuple(motions)
+    if not motions:
+        raise ValueError("an IDA needs at least one record")
+    p = float(p)
+    if not (math.isfinite(p) and p > 0):
+        raise ValueError(f"p must be a finite number > 0, got {p}")
+    ratio = _grid("ratio", np.round(np.linspace(1.0, 5.0, 81), 12) if ratio is None
+                  else ratio)
+    if ratio[0] < 0:
+        raise ValueError("ratio values must be >= 0")
+    tol = float(tol)
+    if not (math.isfinite(tol) and tol >= 0):
+        raise ValueError(f"tol must be a finite number >= 0, got {tol}")
+    names = tuple(m.name for m in motions) if names is None else tuple(names)
+    if len(names) != len(motions):
+        raise ValueError("give one name per record")
+    scale = np.array([im_per_unit_pga(m, im, period) for m in motions])
+    scan = RecordScan(system, p, tol, check_island_step(island_step))
+    task_ratio = np.append(ratio, np.nan)
+    # one task per record, the longest records first (they finish last otherwise); each
+    # record is stored under its own key as it finishes (resumable, and reused by any
+    # suite that holds the record)
+    order = sorted(range(len(motions)), key=lambda k: -motions[k].duration)
+    tasks = [(np.full(task_ratio.size, float(k)), task_ratio) for k in order]
+    store = sweep.as_store(store)
+    keys = None if store is None else [
+        sweep.chunk_key(scan, motions[k], np.array([p]), task_ratio) for k in order]
+    executor, owned = sweep.as_executor(executor)
+    over = np.zeros((len(motions), ratio.size), dtype=bool)
+    evaluated = np.zeros_like(over)
+    collapse = np.full(len(motions), np.nan)
+    try:
+        with tqdm(total=len(motions), desc=scan.name, unit="record",
+                  disable=not progress, leave=False) as bar:
+            res = sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
+                                   bar=TaskBar(bar), keys=keys)
+    finally:
+        if owned:
+            executor.close()
+    for k, (o, r) in zip(order, res, strict=True):
+        over[k], evaluated[k], collapse[k] = o[:-1], ~np.isnan(r[:-1]), r[-1]
+    return IDAResult(system=system.name, p=p, ap_min=float(system.ap_min), im=im,
+                     records=names, ratio=ratio, overturned=over, ratio_collapse=collapse,
+                     im_scale=scale, resurrections=count_resurrections(over), tol=tol,
+                     period=period, island_step=scan.island_step, evaluated=evaluated)
+
+
+# --------------------------------------------------------------------------- the fit
+
+
+@dataclass(frozen=True)
+class LognormalFit:
+    """A lognormal fragility P(collapse | IM = x) = Φ(ln(x/θ)/β) (Eq. (11.31)).
+
+    ``median`` θ and ``beta`` β maximise the likelihood of the collapse points and of the
+    censored records (survivors up to their scan limit).
+    """
+
+    median: float
+    beta: float
+    n_collapsed: int
+    n_censored: int
+    loglik: float
+
+    def probability(self, x) -> np.ndarray:
+        """P(collapse) at intensity ``x``."""
+        from scipy.stats import norm
+
+        x = np.asarray(x, dtype=float)
+        with np.errstate(divide="ignore"):
+            return norm.cdf(np.log(x / self.median) / self.beta)
+
+    def intensity(self, probability) -> np.ndarray:
+        """The intensity at which P(collapse) equals ``probability`` (in (0, 1))."""
+        from scipy.stats import norm
+
+        q = np.asarray(probability, dtype=float)
+        if np.any((q <= 0) | (q >= 1)):
+            raise ValueError("a probability of collapse must lie in (0, 1)")
+        return self.median * np.exp(self.beta * norm.ppf(q))
+
+
+_LOG_SQRT_2PI = 0.5 * math.log(2 * math.pi)
+
+
+def _neg_loglik(params, lx, lc):
+    """−ln L of Eq. (11.31) without the constant Σ ln x_i, and its gradient in
+    (μ = ln θ, s = ln β): with z = (ln x − μ)/β and the hazard h(z) = φ(z)/(1 − Φ(z)),
+    ∂/∂μ = −(Σ z_i + Σ h(z_j))/β and ∂/∂s = n − Σ z_i² − Σ z_j h(z_j)."""
+    from scipy.special import log_ndtr
+
+    mu, log_beta = float(params[0]), float(params[1])
+    beta = math.exp(log_beta)
+    z = (lx - mu) / beta
+    zc = (lc - mu) / beta
+    log_sf = log_ndtr(-zc)
+    value = float(0.5 * z @ z + lx.size * (_LOG_SQRT_2PI + log_beta) - log_sf.sum())
+    hazard = np.exp(-0.5 * zc * zc - _LOG_SQRT_2PI - log_sf)
+    grad = np.array([-(z.sum() + hazard.sum()) / beta,
+                     lx.size - z @ z - zc @ hazard])
+    return value, grad
+
+
+def fit_lognormal(collapse, censored_at=()) -> LognormalFit:
+    """Maximum-likelihood lognormal fit of collapse intensities with right-censoring.
+
+    Parameters
+    ----------
+    collapse : collapse intensities of the records that collapsed (> 0).
+    censored_at : intensities up to which the other records survived (> 0).
+
+    Without censored records the estimate is closed form (mean and standard deviation,
+    ddof 0, of ln x); with them the likelihood Eq. (11.31) is maximised numerically
+    (scipy.optimize BFGS with the analytic gradient, from the closed-form start).
+    """
+    lx = np.log(_positive_values("collapse intensities", collapse))
+    lc = np.log(_positive_values("censoring intensities", censored_at))
+    if lx.size < 2 or np.ptp(lx) == 0:
+        raise ValueError(f"a lognormal fit needs at least two different collapse "
+                         f"intensities, got {lx.size} record(s) that collapse"
+                         + (f" and {lc.size} censored" if lc.size else ""))
+    mu0, beta0 = float(lx.mean()), float(lx.std())
+    if lc.size == 0:
+        mu, beta = mu0, beta0
+    else:
+        from scipy.optimize import minimize
+
+        res = minimize(_neg_loglik, [mu0, math.log(beta0)], args=(lx, lc), jac=True,
+                       method="BFGS", options={"gtol": 1e-10, "maxiter": 500})
+        mu, beta = float(res.x[0]), math.exp(float(res.x[1]))
+    return LognormalFit(median=math.exp(mu), beta=beta, n_collapsed=int(lx.size),
+                        n_censored=int(lc.size),
+                        loglik=-_neg_loglik([mu, math.log(beta)], lx, lc)[0]
+                        - float(lx.sum()))
+
+
+def _positive_values(name: str, values) -> np.ndarray:
+    arr = np.atleast_1d(np.asarray(values, dtype=float)).ravel()
+    if arr.size and not (np.all(np.isfinite(arr)) and np.all(arr > 0)):
+        raise ValueError(f"{name} must be finite numbers > 0")
+    return arr
+
+
+def bootstrap(collapse, censored_at=(), *, n: int = N_BOOTSTRAP, level: float = 0.95,
+              im_grid=None, seed: int = 0) -> dict:
+    """Bootstrap confidence intervals of θ, β and of the curve (records resampled with
+    replacement, each resample refitted by :func:`fit_lognormal`; resamples with fewer
+    than two different collapse intensities are skipped and counted).
+
+    Returns a dict: ``level``, ``n``, ``skipped``, ``seed``, ``median`` [lo, hi],
+    ``beta`` [lo, hi] and, given ``im_grid``, ``im`` and the band ``probability_lo`` /
+    ``probability_hi`` (pointwise percentiles of the resampled curves).
+    """
+    from scipy.stats import norm
+
+    if isinstance(n, bool) or int(n) != n or n < 1:
+        raise ValueError(f"the number of bootstrap resamples must be a positive integer, "
+                         f"got {n!r}")
+    if not 0 < level < 1:
+        raise ValueError(f"the confidence level must lie in (0, 1), got {level}")
+    x = _positive_values("collapse intensities", collapse)
+    c = _positive_values("censoring intensities", censored_at)
+    values = np.concatenate([x, c])
+    is_c = np.arange(values.size) >= x.size
+    rng = np.random.default_rng(seed)
+    fits = []
+    for _ in range(int(n)):
+        k = rng.integers(0, values.size, values.size)
+        try:
+            f = fit_lognormal(values[k][~is_c[k]], values[k][is_c[k]])
+        except ValueError:
+            continue
+        fits.append((f.median, f.beta))
+    if not fits:
+        raise ValueError("no bootstrap resample could be fitted (too few collapses)")
+    th, be = np.array(fits).T
+    q = 100 * np.array([(1 - level) / 2, (1 + level) / 2])
+    out = {"level": level, "n": int(n), "skipped": int(n) - len(fits), "seed": seed,
+           "median": np.percentile(th, q).tolist(), "beta": np.percentile(be, q).tolist()}
+    if im_grid is not None:
+        grid = _positive_values("im grid", im_grid)
+        curves = norm.cdf(np.log(grid[None, :] / th[:, None]) / be[:, None])
+        lo, hi = np.percentile(curves, q, axis=0)
+        out.update(im=grid.tolist(), probability_lo=lo.tolist(), probability_hi=hi.tolist())
+    return out
+
+
+# --------------------------------------------------------------------------- together
+
+
+class TooFewCollapses(ValueError):
+    """Fewer than two different collapse points: no lognormal can be fitted."""
+
+
+
+@dataclass(frozen=True)
+class Fragility:
+    """IDA, its lognormal fit and the bootstrap band (what ``rockarch fragility`` prints);
+    ``fit`` is None when fewer than two records collapse (:class:`TooFewCollapses`)."""
+
+    ida: IDAResult
+    fit: LognormalFit | None
+    ci: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        """The CLI's JSON: ``im``, ``median``, ``beta``, ``points`` and ``ci``."""
+        r = self.ida
+        points = [{"record": name, "im_collapse": (float(v) if math.isfinite(v) else None),
+                   "censored": bool(not math.isfinite(v)),
+                   "im_limit": float(lim), "resurrections": int(n)}
+                  for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit,
+                                             r.resurrections, strict=True)]
+        fit = self.fit
+        out = {"im": r.im, "units": IM_UNITS[r.im],
+               "median": None if fit is None else fit.median,
+               "beta": None if fit is None else fit.beta, "n_records": len(r.records),
+               "n_collapsed": int((~r.censored).sum()), "n_censored": int(r.censored.sum()),
+               "system": r.system, "p": r.p, "ap_min": r.ap_min, "points": points,
+               "ci": self.ci}
+        if r.period is not None:
+            out["period"] = r.period
+        if r.island_step > 1:
+            out["island_step"] = r.island_step
+        return out
+
+
+def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float = 0.95,
+            im_grid=None, seed: int = 0) -> Fragility:
+    """Lognormal fit (censored records included) and bootstrap band of an IDA."""
+    x = result.im_collapse[~result.censored]
+    c = result.im_limit[result.censored]
+    if np.unique(x).size < 2:
+        raise TooFewCollapses(f"only {x.size} of {len(result.records)} records collapse up to "
+                         f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least two "
+                         "different collapse points (raise the scan limit, e.g. "
+                         "--ratio-max 10)")
+    fit = fit_lognormal(x, c)
+    ci = {} if n_bootstrap == 0 else bootstrap(x, c, n=n_bootstrap, level=level,
+                                               im_grid=im_grid, seed=seed)
+    return Fragility(result, fit, ci)
+
+
+def fragility(system, motions: Sequence[GroundMotion], p: float, *,
+              im_grid: Callable | Sequence | None = None, n_bootstrap: int = N_BOOTSTRAP,
+              level: float = 0.95, seed: int = 0, **ida_kw) -> Fragility:
+    """IDA of ``system`` at ``p`` over ``motions`` and its lognormal fragility (Sect. 11.3);
+    keywords as :func:`ida` (im, period, ratio, tol, executor, store, ...)."""
+    return fit_ida(ida(system, motions, p, **ida_kw), n_bootstrap=n_bootstrap, level=level,
+                   im_grid=im_grid, seed=seed)
+
+
+def site_fragility(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
+                   alpha: float | None = None, names=None, ratio=None, tol: float = OAS_TOL,
+                   t_free: float | None = None, n_bootstrap: int = N_BOOTSTRAP,
+                   seed: int = 0, executor=None, store=None, progress: bool = False
+                   ) -> Fragility:
+    """Fragility in PGA [m/s²] of a structure replaced by the site's slender block (the
+    design method of docs/theory.md Sect. 7): the IDA of the block of slenderness
+    ``alpha`` (default the site's) at the structure's ``p``, with collapse points in units
+    of the structure's ``ap_min`` (PGA = ratio·ap_min, Eq. (11.30))."""
+    kw = {} if t_free is None else {"t_free": t_free}
+    block = BlockSystem(alpha=site.ALPHA if alpha is None else alpha, **kw)
+    res = ida(block, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
+              store=store, progress=progress)
+    res = replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
+                  f"(replacement, ap,min = {ap_min:.4g} m/s2)")
+    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed)
+
+
+def design_summary(frag: Fragility, *, pga: float | None = None,
+                   probability: float | None = 0.1, g: float | None = None) -> dict:
+    """What ``rockarch design --records`` reports of the replacement's fragility: θ, β,
+    the probability of collapse at ``pga`` [m/s²] and the PGA at ``probability``."""
+    g = G if g is None else g
+    fit = frag.fit
+    out = {"median": fit.median, "beta": fit.beta, "n_records": len(frag.ida.records),
+           "n_censored": fit.n_censored, "ci": {k: frag.ci[k] for k in ("level", "median",
+                                                                       "beta")
+                                               if k in frag.ci}}
+    if pga is not None:
+        if not (math.isfinite(pga) and pga > 0):
+            raise ValueError(f"--pga must be a finite number > 0 [m/s²], got {pga}")
+        out["probability_at_pga"] = {"pga": pga, "probability": float(fit.probability(pga))}
+    if probability is not None:
+        x = float(fit.intensity(probability))
+        out["pga_at_probability"] = {"probability": probability, "pga": x, "pga_g": x / g}
+    return out

@@ -1,0 +1,212 @@
+"""Site OAS: the block OAS of a set of records and their characteristic curve (paper Sect. 9).
+
+For each record the OAS of a slender rigid block is computed (records scaled to
+PGA = ratio·ap,min, as in :mod:`rockarch.spectra.oas`); the site's curves are the **envelope**
+(the lowest overturning ratio over all records, at each p) and a chosen **percentile** of
+the records' boundaries (a record that does not overturn within the ratio range counts as
++inf). The result is a NetCDF file of kind ``rockarch-site-oas`` with the records' names
+and SHA-256 hashes, reused by :mod:`rockarch.design`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from rockarch import systems
+from rockarch.core import __version__, sweep
+from rockarch.core.constants import G_STANDARD, OAS_TOL
+from rockarch.core.sweep.limits import check_simulations
+from rockarch.motion.signals import GroundMotion
+from rockarch.motion.suite import PGA_RANGE, read_suite, record_files
+from rockarch.spectra import oas as spectra
+
+KIND = "rockarch-site-oas"
+FORMAT_VERSION = 1
+#: Default slenderness of the site's block: slender (the paper's characteristic OAS).
+ALPHA = 0.05
+
+
+#: Site curves a site OAS may hold (``rockarch design --curve``).
+CURVES = ("envelope", "characteristic", "normalised", "simplified")
+
+
+def record_paths(paths) -> list[Path]:
+    """Expand files and folders (``.AT2`` and two-column records inside, sorted) into record
+    files: :func:`rockarch.motion.suite.record_files` (a ``_SearchResults.csv`` is skipped)."""
+
+    return record_files(paths)[0]
+
+
+def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], list[str]]:
+    """Read the records as a suite (:func:`rockarch.motion.suite.read_suite`: the same folders and
+    vertical components left out as every ``--records``) and their file hashes; reject
+    implausible PGAs (wrong units) and a record given twice (the same samples under two
+    names: it would count twice in the percentile)."""
+
+    motions, hashes, seen = [], [], {}
+    for rec in read_suite(paths, units=units):
+        path, m = Path(rec.path), rec.motion
+        first = seen.setdefault(m.fingerprint(), path)
+        if first != path:
+            raise ValueError(f"{path}: the same record as {first} (identical samples); a site "
+                             "counts each record once: leave one out")
+        lo, hi = PGA_RANGE
+        if not lo <= m.pga <= hi:
+            raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
+                             "not plausible: wrong units? (two-column files: --units g, "
+                             "m/s2 or cm/s2)")
+        motions.append(m)
+        hashes.append(hashlib.sha256(path.read_bytes()).hexdigest())
+    return motions, hashes
+
+
+def curves(boundary, percentile: float) -> tuple[np.ndarray, np.ndarray]:
+    """The site's envelope and percentile curves of the records' boundaries (record, ...)
+    (docs/theory.md Eq. (2.2), a record that does not overturn within range counting as
+    +inf): (min over records, ``percentile`` over records, lower value), +inf left in."""
+    inf = np.where(np.isfinite(boundary), boundary, np.inf)
+    return inf.min(axis=0), np.percentile(inf, percentile, axis=0, method="lower")
+
+
+def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
+             percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
+             progress: bool = True, executor=None, store=None, system=None,
+             **system_kw) -> xr.Dataset:
+    """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
+
+    The structure is the slender block of slenderness ``alpha`` (the paper's site OAS), or
+    ``system``, any :func:`rockarch.systems.system`: a block gives the same file as by
+    ``alpha``; any other structure has the p axis of :func:`rockarch.spectra.oas.compute_oas`
+    (docs/theory.md Eq. (11.33): the same shape scaled to each p).
+
+    Returns a Dataset with ``overturned`` (record, p, ratio), ``boundary`` (record, p),
+    ``envelope`` (p), ``characteristic`` (p) (the ``percentile`` of the boundaries; a lower
+    percentile is more conservative), and the records' names, PGAs and hashes.
+    ``executor`` and ``store`` are those of :func:`rockarch.spectra.oas.compute_oas` (one
+    executor serves every record: a pool or cluster starts once).
+    """
+    if not motions:
+        raise ValueError("a site OAS needs at least one record")
+    if not 0.0 <= float(percentile) <= 100.0:
+        raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
+    if system is not None and (alpha != ALPHA or system_kw):
+        raise ValueError("give either a system or the block's alpha and settings, not both")
+    n_p, n_r = np.size(p), np.size(ratio)
+    check_simulations(len(motions) * n_p * n_r,
+                      f"{len(motions)} records × {n_p} p × {n_r} ratio values")
+    if system is None:
+        system = systems.BlockSystem(alpha=alpha, **system_kw)
+    block = isinstance(system, systems.BlockSystem)  # the paper's site OAS, as it was
+    alpha = system.alpha if block else None
+
+    executor, owned = sweep.as_executor(executor)
+    store = sweep.as_store(store)
+    maps = []
+    try:
+        for k, m in enumerate(motions):
+            if progress:
+                from tqdm.auto import tqdm
+
+                tqdm.write(f"record {k + 1}/{len(motions)}: {m.name}")
+            maps.append(spectra.compute_oas(system, m, p, ratio, tol=tol, progress=progress,
+                                            executor=executor, store=store))
+    finally:
+        if owned:
+            executor.close()
+    b = np.stack([ds["boundary"].values for ds in maps])
+    env, char = curves(b, percentile)
+    names = [m.name for m in motions]
+    hashes = list(hashes) if hashes is not None else [m.fingerprint() for m in motions]
+    ds = xr.Dataset(
+        {
+            "overturned": (("record", "p", "ratio"),
+                           np.stack([d["overturned"].values for d in maps])),
+            "boundary": (("record", "p"), b),
+            "envelope": (("p",), np.where(np.isfinite(env), env, np.nan)),
+            "characteristic": (("p",), np.where(np.isfinite(char), char, np.nan)),
+            "record_name": (("record",), np.array(names, dtype=object)),
+            "record_sha256": (("record",), np.array(hashes, dtype=object)),
+            "record_pga": (("record",), np.array([m.pga for m in motions])),
+        },
+        coords={"record": np.arange(len(motions)), "p": maps[0]["p"].values,
+                "ratio": maps[0]["ratio"].values},
+    )
+    ds["p"].attrs.update(units="1/s", long_name="frequency parameter p")
+    ds["ratio"].attrs.update(units="1", long_name="ap / ap,min")
+    ds["record_pga"].attrs.update(units="m/s2")
+    ds.attrs.update(kind=KIND, format_version=FORMAT_VERSION, rockarch_version=__version__)
+    if not block:  # any structure: its name and parameters, as an OAS file keeps them
+        ds.attrs.update({f"system_{k}": (v if not isinstance(v, bool) else int(v))
+                         for k, v in system.attrs().items()})
+        ds.attrs.update(system=system.name, percentile=float(percentile),
+                        tolerance=float(tol), t_free=system.t_free,
+                        p_axis="the structure scaled to each p (p ~ 1/sqrt(size), same "
+                               f"shape); p of the structure as given: {system.p_ref:.6g} 1/s",
+                        title=f"site OAS of {len(motions)} record(s), {system.name}")
+        return ds
+    ds.attrs.update(alpha=float(alpha), percentile=float(percentile), tolerance=float(tol),
+                    t_free=system.t_free, restitution=system.attrs()["restitution"],
+                    title=f"site OAS of {len(motions)} record(s), slender block "
+                          f"alpha = {alpha:g}")
+    return ds
+
+
+def check_block_site(ds: xr.Dataset, path=None) -> xr.Dataset:
+    """The site OAS unchanged if it is a slender block's (what the paper's design method
+    reads, docs/theory.md Eq. (7.2)); a ValueError naming its structure otherwise."""
+    if "system" in ds.attrs:
+        where = f"{path}: " if path is not None else ""
+        raise ValueError(f"{where}this is the site OAS of {ds.attrs['system']}, not of a "
+                         "slender block: the design check reads a block's site OAS "
+                         "(rockarch site-oas without --system); for this structure give "
+                         "--records")
+    return ds
+
+
+def save(ds: xr.Dataset, path) -> None:
+    """Write a site OAS to NetCDF atomically."""
+    spectra.save(ds, path)
+
+
+def load(path) -> xr.Dataset:
+    """Read a site OAS file, checking its kind and version."""
+    ds = spectra.read_netcdf(path)
+    kind = ds.attrs.get("kind")
+    if kind != KIND:
+        raise ValueError(f"{path}: not a rockarch site OAS file (kind = {kind!r}; make one "
+                         "with `rockarch site-oas`)")
+    version = int(ds.attrs.get("format_version", -1))
+    if version != FORMAT_VERSION:
+        raise ValueError(f"{path}: site OAS format version {version}, this rockarch reads "
+                         f"version {FORMAT_VERSION}: rebuild it with `rockarch site-oas`")
+    return ds
+
+
+def curve_at(ds: xr.Dataset, p: float, curve: str = "envelope") -> tuple[float, bool]:
+    """The site curve's ratio at p: the smaller of the two grid values around p.
+
+    Record boundaries are jagged, so no interpolation: the lower neighbour is the safe side.
+    Returns (ratio, is_lower_bound): where no record overturns within the ratio range the
+    largest ratio of the range is used, a safe lower bound of the true value.
+    """
+
+    if curve not in CURVES:
+        raise ValueError(f"curve must be one of {', '.join(CURVES)}, got {curve!r}")
+    if curve not in ds:
+        raise ValueError(f"the site OAS has no {curve!r} curve: compute it from the records "
+                         "(rockarch design --records DIR)")
+    ps = ds["p"].values
+    if not ps[0] <= p <= ps[-1]:
+        raise ValueError(f"the site OAS covers p = {ps[0]:g}…{ps[-1]:g} 1/s, the structure "
+                         f"has p = {p:.4g} 1/s: recompute the site OAS over a wider p range")
+    vals = ds[curve].values
+    rmax = float(ds["ratio"].values[-1])
+    filled = np.where(np.isfinite(vals), vals, rmax)
+    k = int(np.searchsorted(ps, p))
+    sel = slice(k, k + 1) if ps[min(k, ps.size - 1)] == p else slice(max(k - 1, 0), k + 1)
+    i = max(k - 1, 0) + int(np.argmin(filled[sel])) if sel.start != k else k
+    return float(filled[i]), bool(not np.isfinite(vals[i]))
