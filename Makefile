@@ -4,14 +4,16 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= demo-output
 
-.PHONY: demo test test-all bench validate clean
+.PHONY: demo test test-all test-perturbed bench golden lock validate clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(VENV)/.installed: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e ".[test]"
+# Locked versions first (requirements.lock, made by `make lock`), then rockarch itself.
+$(VENV)/.installed: pyproject.toml requirements.lock | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -r requirements.lock
+	$(BIN)/python -m pip install --quiet --no-deps -e .
 	touch $@
 
 demo: $(VENV)/.installed
@@ -24,8 +26,25 @@ test: $(VENV)/.installed
 test-all: $(VENV)/.installed
 	$(BIN)/python -m pytest -q
 
+# The fast suite again with every ground motion scaled by 1 + 1e-12 (tests/conftest.py):
+# results move in their last bits, as on another machine; CI runs it after `make test`.
+test-perturbed: $(VENV)/.installed
+	ROCKARCH_PERTURB=1e-12 $(BIN)/python -m pytest -q -m "not slow"
+
 bench: $(VENV)/.installed
 	for f in benchmarks/*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
+
+# Bit-identical guard for refactors, on this machine only (benchmarks/golden.py).
+golden: $(VENV)/.installed
+	$(BIN)/python benchmarks/golden.py
+
+# Refresh requirements.lock from the ranges of pyproject.toml (Python >= 3.10, any platform).
+lock: | $(BIN)/python
+	$(BIN)/python -m pip install --quiet uv
+	$(BIN)/uv pip compile pyproject.toml --extra test --universal --python-version 3.10 \
+		--quiet -o requirements.lock
+	sed -i '1i # Locked versions that `make demo` and `make test` install (rockarch itself is installed\n# from the working tree on top, without dependencies). Refresh with `make lock`.' \
+		requirements.lock
 
 # Siconos oracle (docs/validation.md): installs python3-siconos for /usr/bin/python3 where
 # apt-get can, and skips cleanly where it cannot.

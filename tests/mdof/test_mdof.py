@@ -10,9 +10,12 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rockarch import block, mdof, mechanism, motion
+import rockarch as ra
+from rockarch import mdof
 from rockarch.arch import catenary, limit_analysis
-from rockarch.fourhinge_motion import fourhinge_mechanism
+from rockarch.motion import signals as motion
+from rockarch.rocking import block, mechanism
+from rockarch.rocking.fourhinge_motion import fourhinge_mechanism
 
 SIGNALS = ("sine", "square", "step")
 
@@ -35,7 +38,7 @@ def test_single_block_reproduces_block_map(signal):
     p = np.linspace(1.0, 10.0, 19)
     ratio = np.linspace(1.0, 6.0, 26)
     pp, rr = np.meshgrid(p, ratio, indexing="ij")
-    m = motion.pulse(signal, 1.0, 1.0)
+    m = motion.pulse(signal, period=1.0)
     r = mdof.simulate_batch(a, m, pp, rr)
     b = block.simulate_batch(block.RigidBlock(1.0, alpha), m, pp, rr)
     diff = r.overturned != b.overturned
@@ -77,7 +80,7 @@ def test_below_ap_min_no_joint_opens(n):
     arch = catenary(1.0, 0.3, 0.05)
     a = mdof.arch_assembly(arch, n)
     for sig in SIGNALS:
-        r = mdof.simulate(a, motion.pulse(sig, 0.98 * a.ap_min, 0.5), t_free=0.5)
+        r = mdof.simulate(a, motion.pulse(sig, period=0.5, ap=0.98 * a.ap_min), t_free=0.5)
         assert r.open_joints_max == 0
         assert not r.overturned
         assert r.max_rotation_ratio < 1e-6
@@ -174,7 +177,7 @@ def test_arch_with_only_the_four_hinges_is_the_sdof_mechanism(signal):
     p = np.linspace(1.0, 8.0, 15)
     ratio = np.linspace(1.0, 5.0, 17)
     pp, rr = np.meshgrid(p, ratio, indexing="ij")
-    m = motion.pulse(signal, 1.0, 1.0)
+    m = motion.pulse(signal, period=1.0)
     r4 = mdof.simulate_batch(a4, m, pp, rr)
     over_f = mechanism.simulate_batch(fh, m, pp, rr).overturned
     assert (r4.overturned != over_f).mean() < 0.02
@@ -242,23 +245,23 @@ def test_bad_input():
         mdof.simulate(a, motion.sine(1.0, 1.0), gap_tol=0.1)
 
 
-def test_no_friction_chain_results_unchanged():
-    # the numbers of the engine before friction and general graphs were added (main at
-    # 1b604c3: 20-voussoir arch, the first 5 s of El Centro at 1.5·ap_min, 1 s free):
-    # a chain without friction still runs on the banded chain stepper, bit for bit
-    from rockarch.records import el_centro
-
-    rec = el_centro()
+def test_no_friction_chain_history_is_safe_with_its_spread():
+    # 20-voussoir arch, the first 5 s of El Centro at 1.5·ap_min, 1 s free (h·p = 0.005
+    # fixed). The verdict and the number of steps are deterministic; the impacts, open
+    # joints and largest rotation of such a history are chaotic: scaling the record by
+    # 1 + 1e-12 or 1 + 1e-9 and halving the step twice gave 161–251 impacts, 9–11 open
+    # joints and a largest rotation of 0.26–0.41 of delta (2026-11-25), so they are tested
+    # as bands around that spread. The bit-identical guard for refactors is
+    # benchmarks/golden.py (`make golden`), on one machine only.
+    rec = ra.el_centro()
     keep = rec.t <= 5.0
     rec = motion.GroundMotion(rec.t[keep], rec.a[keep], "ec5")
     a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
-    r = mdof.simulate(a, rec.scaled(1.5 * a.ap_min / rec.pga), t_free=1.0)
-    assert (r.overturned, r.impacts, r.open_joints_max, r.steps) == (False, 174, 9, 4258)
-    assert r.max_rotation_ratio == 0.2998245811537207
-    assert r.energy[-1] == 0.05538229428284767
-    assert r.q[-1, 10].tolist() == [5.296907335147821, 2.9892358986171623,
-                                    -0.003930807155329633]
-    assert r.max_slip == 0.0 and r.sliding_contacts_max == 0
+    r = mdof.simulate(a, rec.scaled(1.5 * a.ap_min / rec.pga), t_free=1.0, h_factor=0.005)
+    assert not r.overturned and r.steps == 4258 and r.lcp_failures == 0
+    assert 100 <= r.impacts <= 400 and 6 <= r.open_joints_max <= 14
+    assert 0.15 <= r.max_rotation_ratio <= 0.6
+    assert r.max_slip == 0.0 and r.sliding_contacts_max == 0  # no friction: no sliding
 
 
 def test_graph_stepper_reproduces_chain_stepper():
