@@ -246,5 +246,5 @@ def site_from_records(suite, *, percentile: float = 50.0, executor=None, store=N
     :data:`DESIGN_P` × :data:`DESIGN_RATIO`, with the characteristic curves added."""
     ds = site.site_oas(suite.motions, DESIGN_P, DESIGN_RATIO, percentile=percentile,
                        progress=progress, executor=executor, store=store)
-    ds["record_name"] = (("record",), np.array(suite.names, dtype=object))
+    ds["record_name"] = (("record",), np.array(suite.names, dtype=str))
     return characteristic(ds, suite.motions)
