@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= demo-output
 
-.PHONY: demo test test-all test-perturbed bench golden lock validate clean
+.PHONY: demo test test-all test-perturbed test-oldest bench golden lock validate clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -31,6 +31,17 @@ test-all: $(VENV)/.installed
 test-perturbed: $(VENV)/.installed
 	ROCKARCH_PERTURB=1e-12 $(BIN)/python -m pytest -q -m "not slow"
 
+# The fast suite on the oldest versions pyproject.toml allows (.venv-oldest, made with uv's
+# lowest-direct resolution for this Python).
+test-oldest: | $(BIN)/python
+	$(BIN)/python -m pip install --quiet uv
+	$(BIN)/uv pip compile pyproject.toml --extra test --resolution lowest-direct --quiet \
+		-o .venv-oldest.lock
+	test -x .venv-oldest/bin/python || $(PYTHON) -m venv .venv-oldest
+	.venv-oldest/bin/python -m pip install --quiet -r .venv-oldest.lock
+	.venv-oldest/bin/python -m pip install --quiet --no-deps -e .
+	ROCKARCH_JIT_CACHE=.venv-oldest/jit .venv-oldest/bin/python -m pytest -q -m "not slow"
+
 bench: $(VENV)/.installed
 	for f in benchmarks/*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
 
@@ -54,4 +65,4 @@ validate: $(VENV)/.installed
 	$(BIN)/python validation/siconos_compare.py
 
 clean:
-	rm -rf $(VENV) $(OUT) build src/*.egg-info
+	rm -rf $(VENV) .venv-oldest .venv-oldest.lock $(OUT) build src/*.egg-info
