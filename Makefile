@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 OUT ?= demo-output
 
-.PHONY: demo test test-all test-perturbed test-oldest bench golden lock validate clean
+.PHONY: demo test test-all test-perturbed test-oldest docs bench golden lock validate clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -25,6 +25,18 @@ test: $(VENV)/.installed
 
 test-all: $(VENV)/.installed
 	$(BIN)/python -m pytest -q
+	$(MAKE) docs
+
+# The docs as a static site: site/index.html (MkDocs + Material + mkdocstrings, MathJax copied
+# from a package: it opens offline). Strict: a broken link or reference fails the build.
+# (NO_MKDOCS_2_WARNING silences Material's banner about its end of life, not a warning of ours.)
+docs: $(VENV)/.installed-docs
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
+	@echo "docs: open site/index.html"
+
+$(VENV)/.installed-docs: requirements-docs.lock | $(VENV)/.installed
+	$(BIN)/python -m pip install --quiet -r requirements-docs.lock
+	touch $@
 
 # The fast suite again with every ground motion scaled by 1 + 1e-12 (tests/conftest.py):
 # results move in their last bits, as on another machine; CI runs it after `make test`.
@@ -56,6 +68,10 @@ lock: | $(BIN)/python
 		--quiet -o requirements.lock
 	sed -i '1i # Locked versions that `make demo` and `make test` install (rockarch itself is installed\n# from the working tree on top, without dependencies). Refresh with `make lock`.' \
 		requirements.lock
+	$(BIN)/uv pip compile pyproject.toml --extra docs --universal --python-version 3.10 \
+		--constraint requirements.lock --no-emit-package rockarch --quiet -o requirements-docs.lock
+	sed -i '1i # What `make docs` installs on top of requirements.lock. Refresh with `make lock`.' \
+		requirements-docs.lock
 
 # Siconos oracle (docs/validation.md): installs python3-siconos for /usr/bin/python3 where
 # apt-get can, and skips cleanly where it cannot.
@@ -65,4 +81,4 @@ validate: $(VENV)/.installed
 	$(BIN)/python validation/siconos_compare.py
 
 clean:
-	rm -rf $(VENV) .venv-oldest .venv-oldest.lock $(OUT) build src/*.egg-info
+	rm -rf $(VENV) .venv-oldest .venv-oldest.lock $(OUT) build site src/*.egg-info

@@ -1,5 +1,8 @@
 """Design checks: the largest safe PGA of a structure at a site.
 
+Theory: docs/theory.md §7 (replacement catenary arch, Eq. 7.2), §11.4 (design of any
+structure, Eqs. 11.34–11.35).
+
 - An arch by the paper's method (Sect. 9, Fig. 20; docs/theory.md §7), :func:`design_check`:
   the arch is replaced by a catenary arch (:mod:`rockarch.arch.replacement`), whose
   critical optimal four-hinge mechanism gives p and ap,min; the site's OAS of a slender

@@ -1,5 +1,8 @@
 """Rocking systems by kind: the one place where a structure is built from its options.
 
+Theory: docs/theory.md §2 (the ratio and p axes, Eq. 2.1), §3 (SDOF mechanisms), §11.4
+(a structure scaled to p, Eq. 11.33).
+
 Every kind of structure (:data:`KINDS`) becomes a *system*: a small frozen object with a
 name, the limit acceleration ``ap_min`` that the ratio ap/ap,min multiplies, a reference
 frequency parameter ``p_ref``, and three calls that take the ground motion's *shape*:

@@ -1,6 +1,9 @@
-"""Masonry arch statics: geometry, thrust-line limit analysis, four-hinge mechanism.
+"""Masonry arch statics: geometry, thrust-line limit analysis, the four-hinge mechanism.
 
-Typical use::
+Theory: docs/theory.md §4 (thrust line, limit analysis), §5 (four-hinge mechanism), §7
+(replacement catenary arch).
+
+Typical use (users' guide: docs/arch.md)::
 
     from rockarch.arch import catenary, analyse
     res = analyse(catenary(span=10.0, rise=3.0, thickness=0.25))

@@ -1,5 +1,7 @@
 """The ``rockarch`` command line (typer): one module per command group.
 
+Theory: none of its own (each command names the equations of the library call it makes).
+
 Every command accepts ``--json`` (one JSON object on stdout, SI units). Bad input prints one
 line ``error: ...`` on stderr and exits with status 2. The commands parse options and call
 the library (:func:`rockarch.systems.system`, :func:`rockarch.spectra.oas.compute_oas`, ...);

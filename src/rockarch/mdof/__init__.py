@@ -1,17 +1,21 @@
-"""Multi-block (MDOF) rocking structures: arches and columns whose joints open and close.
+"""Assemblies of rigid blocks: arches, columns, piers, bridges, walls, in motion and at rest.
 
-Planar rigid blocks, contact only at the two corners of every joint (compression only),
-no sliding, no damping during motion, inelastic impacts; exact (second-order) kinematics.
-Moreau–Jean time stepping with an exact LCP solve per step (docs/mdof.md)::
+Theory: docs/theory.md §6 (Moreau–Jean time stepping), §9 (Coulomb friction at the joints),
+§10 (general contact graphs, limit analysis with friction).
 
-    from rockarch.arch import catenary
+Planar rigid blocks whose joints open, close and (with a friction coefficient) slide;
+inelastic impacts; exact (second-order) kinematics. Moreau–Jean time stepping with an exact
+contact solve per step (users' guides: docs/mdof.md, docs/assemblies.md)::
+
+    import rockarch as ra
     from rockarch import mdof
-    from rockarch.motion import signals as motion
+    from rockarch.arch import catenary
+
     a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
-    res = mdof.simulate(a, motion.sine(1.2 * a.ap_min, 1.0))
+    res = mdof.simulate(a, ra.pulse("sine", period=1.0, ap=1.2 * a.ap_min))
     res.to_dict()
 
-General assemblies (any contact graph, Coulomb friction per joint; docs/theory.md §10)::
+General assemblies (any contact graph, Coulomb friction per joint)::
 
     b = mdof.bridge(catenary(10.0, 3.0, 0.25), 10, spans=2, pier_height=3, pier_width=1)
     w = mdof.wall(6, 5, 0.4, 0.2, mu=0.6)

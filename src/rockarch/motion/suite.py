@@ -359,6 +359,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         ``UP``); by default they are left out and listed in ``notes`` (rocking structures
         are assessed under horizontal ground motion).
 
+    Notes
+    -----
     Records without a csv row keep the metadata of their ``.AT2`` header; with
     ``apply_scale`` and a csv, a record missing from the csv is an error (its scale is
     unknown). A record missing from the csv or with an implausible PGA (outside

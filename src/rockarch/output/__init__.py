@@ -1,5 +1,6 @@
-"""Everything rockarch writes for people: figures, HTML pages, animations, text tables, and
-the one output-path check and atomic writer they all use.
+"""Everything rockarch writes for people: figures, HTML pages, animations, text tables.
+
+Theory: none of its own (it draws and tabulates what the stages compute).
 
 Modules: :mod:`~rockarch.core.paths` (check before computing, atomic and staged writes,
 the output formats), :mod:`~rockarch.output.figures` (canvas helpers, OAS maps, time

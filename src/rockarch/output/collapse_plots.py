@@ -34,7 +34,7 @@ def draw_supports(ax, assembly: Assembly, **kw) -> None:
 
 
 def collapse_figure(assembly: Assembly, mech: Collapse | None = None):
-    """Figure of the collapse mechanism (default: :func:`statics.collapse` of the
+    """Figure of the collapse mechanism (default: :func:`rockarch.mdof.statics.collapse` of the
     assembly with its own friction)."""
     a = assembly
     mech = collapse(a) if mech is None else mech

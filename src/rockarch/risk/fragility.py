@@ -253,9 +253,13 @@ def fit_lognormal(collapse, censored_at=()) -> LognormalFit:
 
     Parameters
     ----------
-    collapse : collapse intensities of the records that collapsed (> 0).
-    censored_at : intensities up to which the other records survived (> 0).
+    collapse : array_like
+        Collapse intensities of the records that collapsed (> 0).
+    censored_at : array_like
+        Intensities up to which the other records survived (> 0).
 
+    Notes
+    -----
     Without censored records the estimate is closed form (mean and standard deviation,
     ddof 0, of ln x); with them the likelihood Eq. (11.31) is maximised numerically
     (scipy.optimize BFGS with the analytic gradient, from the closed-form start).

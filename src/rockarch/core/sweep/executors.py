@@ -101,6 +101,8 @@ class Executor:
         Start a ``LocalCluster`` of that many single-threaded worker processes on loopback
         (implies mode "dask"); it is stopped by :meth:`close`.
 
+    Notes
+    -----
     Use it as a context manager (or call :meth:`close`); pools and clusters start lazily,
     at the first chunk that is not in the store.
     """
