@@ -128,6 +128,7 @@ def main() -> None:
         ov, _ = reference(res, mech.plus.e_close, m)
         ref_t.append(time.perf_counter() - t1)
         agree.append(ov == v)
+        print(f"  solve_ivp reference: {len(ref_t)}/{len(ratios[::8])} runs", flush=True)
     sub = times[::8]
     print(f"solve_ivp reference ({len(ref_t)} runs): median {np.median(ref_t) * 1e3:.0f} ms; "
           f"rockarch on the same runs {np.median(sub) * 1e3:.3f} ms: "

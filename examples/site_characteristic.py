@@ -1,11 +1,11 @@
 """How well do the normalised and the simplified OAS predict computed record boundaries?
 
-Computes the slender-block site OAS of every record available (the bundled and
-../shared/records real records, de-duplicated, and a seeded synthetic suite), adds the
+Computes the slender-block site OAS of every record given (the bundled El Centro pair and
+the folders of ``--records``, de-duplicated, and a seeded synthetic suite), adds the
 characteristic curves (rockarch.spectra.characteristic) and prints the skill numbers quoted in
-docs/sites.md; writes the figure docs/img/site_characteristic.png.
+docs/sites.md; writes the figure site_characteristic.png in ``--out``.
 
-    PYTHONPATH=src python examples/site_characteristic.py [--synthetic 20] [--out DIR]
+    .venv/bin/python examples/site_characteristic.py [--records DIR] [--synthetic 20] [--out DIR]
 """
 
 from __future__ import annotations
@@ -21,19 +21,13 @@ from rockarch.motion.suite import read_suite
 from rockarch.spectra import characteristic as charsite
 from rockarch.spectra import site
 
-REPO = Path(__file__).resolve().parents[1]
-#: ../shared/records next to the repository (or next to the folder of git worktrees)
-SHARED = next((d for d in (REPO.parent / "shared" / "records",
-                           REPO.parents[1] / "shared" / "records") if d.is_dir()), None)
 P = np.round(np.geomspace(0.5, 10.0, 16), 6)
 RATIO = np.round(np.linspace(1.0, 8.0, 71), 12)
 
 
-def real_records():
-    """Bundled El Centro and the shared folder's records, each motion once."""
-    sources = [bundled_record_path(180), bundled_record_path(270)]
-    if SHARED is not None:
-        sources.append(SHARED)
+def real_records(folders=()):
+    """Bundled El Centro and the records of ``folders``, each motion once."""
+    sources = [bundled_record_path(180), bundled_record_path(270), *folders]
     seen, out = set(), []
     for src in sources:
         suite = read_suite([src])
@@ -127,12 +121,14 @@ def figure(real, synth, path):
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--synthetic", type=int, default=20, help="synthetic records")
-    ap.add_argument("--out", type=Path, default=Path("docs/img"))
+    ap.add_argument("--records", type=Path, action="append", default=[],
+                    help="a folder of more real records (repeatable)")
+    ap.add_argument("--out", type=Path, default=Path("."))
     ap.add_argument("--progress", action="store_true")
     args = ap.parse_args()
     from rockarch.motion.synthetic import synthetic_motions
 
-    real = analyse("real", real_records(), args.progress)
+    real = analyse("real", real_records(args.records), args.progress)
     motions = synthetic_motions(args.synthetic, seed=0)
     synth = analyse("synthetic", [(f"synthetic-{k:03d}", m) for k, m in enumerate(motions)],
                     args.progress)

@@ -1,11 +1,11 @@
 """Figure of docs/sites.md: intensity measures of real and synthetic suites.
 
 (a) one synthetic record (Rezaeian & Der Kiureghian model) and its Husid function with the
-D5-95 window; (b) 5 %-damped Sa/PGA of the bundled and shared real records against the
+D5-95 window; (b) 5 %-damped Sa/PGA of real records (``--records``) against the
 median and 16-84 % band of a 50-record synthetic suite; (c) El Centro 180 ground velocity
 and the Baker (2007) pulse extracted from it.
 
-Run:  python examples/suite_figure.py --records ../shared/records --out docs/img/suite_ims.png
+Run:  .venv/bin/python examples/suite_figure.py --records records/ --out suite_ims.png
 """
 
 from __future__ import annotations

@@ -13,7 +13,9 @@ The rule (docs/architecture.md, "Docs code blocks run"):
   computes: checked with :func:`matches` (``...`` stands for anything). Any other comment is
   prose.
 - A ```` ```console ```` block: each ``$ rockarch ...`` or ``$ .venv/bin/python ...`` line
-  (continued with a backslash) runs in the page's folder, after the page's earlier blocks; the
+  (continued with a backslash) runs in the page's folder (where ``src/``, ``examples/``,
+  ``benchmarks/`` and ``validation/`` are those of the repository, as in a clone), after the
+  page's earlier blocks; the
   lines after it are its output (stdout; ``error: ...`` means exit status 2 and that stderr).
   A command that takes more than :data:`QUICK_SECONDS` on an idle 2-core machine says so with
   ``# ~N s`` (or ``# ~N min``).
@@ -45,7 +47,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: A command stated to take longer than this (or without a stated time) runs only in
 #: ``make test-all``; without a stated time a command must be quicker than this.
 QUICK_SECONDS = 3.0
-#: Folders of the repository whose files the docs' commands read (made absolute).
+#: Folders of the repository whose files the docs read (linked into the page's folder).
 REPO_PREFIXES = ("src/", "examples/", "benchmarks/", "validation/")
 MARKER = re.compile(r"^\s*<!--\s*docs-test:\s*(skip|slow|file)\s*(\S*)\s*-->\s*$")
 FENCE = re.compile(r"^(\s*)(`{3,}|~{3,})\s*([\w+-]*)\s*$")
@@ -273,7 +275,7 @@ def check_value(value, expected: str, where: str) -> None:
     """The value an expression of a docs page computes is the one its comment shows."""
     shown = [show(value, q) for q in ('"', "'")]
     if isinstance(value, tuple):
-        shown += [f"({s})" for s in shown]
+        shown += [f"({s}{',' if len(value) == 1 else ''})" for s in shown]
     if not any(matches(expected, s) for s in shown):
         raise AssertionError(f"{where}: the docs show {expected!r}, the code computes "
                              f"{shown[0]!r}")
@@ -417,13 +419,12 @@ def page_script(path: Path, chosen: list[Step]) -> str:
         if s.kind == "python":
             src = _checked_source(b.text, (_rel(path), b.line)).splitlines()
             lines[b.line:b.line + len(src)] = src  # body starts on the line after the fence
-        elif s.kind == "file":
-            lines[b.line] = f"__docs_file__({b.arg!r}, {b.text!r})"
+        elif s.kind == "file":  # (only the main process: workers import the script too)
+            lines[b.line] = f"if __name__ == '__main__': __docs_file__({b.arg!r}, {b.text!r})"
         else:
             c = s.command
-            i = c.line - 1
-            lines[i] = (lines[i] + "; " if lines[i] else "") + \
-                f"__docs_run__({list(c.argv)!r}, {c.expected!r}, {c.where!r})"
+            lines[c.line - 1] = (f"if __name__ == '__main__': "
+                                 f"__docs_run__({list(c.argv)!r}, {c.expected!r}, {c.where!r})")
     return "\n".join(lines) + "\n"
 
 
@@ -442,7 +443,6 @@ def run_command(argv: list[str], expected: str, where: str) -> None:
         k, _, v = argv[0].partition("=")
         env[k] = v
         argv = argv[1:]
-    argv = [repo_path(a) for a in argv]
     error = expected.startswith("error:")
     t0 = time.perf_counter()
     if argv[0] == "rockarch":
@@ -479,6 +479,9 @@ def run_page(path: Path, everything: bool, folder: Path, langs=("python", "conso
     """Run a page's chosen steps as one script in ``folder``; the completed process (its
     stderr holds one JSON line of run time per command) and the steps run."""
     chosen = selected(steps(path, langs), everything)
+    for prefix in REPO_PREFIXES:  # the page runs as from a clone: src/..., examples/... exist
+        if not (folder / prefix).exists():
+            (folder / prefix.rstrip("/")).symlink_to(ROOT / prefix, target_is_directory=True)
     script = folder / (path.stem + ".md.py")
     script.write_text(page_script(path, chosen), encoding="utf-8")
     env = dict(os.environ, MPLBACKEND="Agg")
