@@ -4,7 +4,7 @@ what they print is what the docs show.
 Used by ``tests/test_readme.py`` (the README's console examples) and
 ``tests/test_docs_blocks.py`` (every block of docs/ and the README's Python block).
 
-The rule (docs/architecture.md, "Docs code blocks run"):
+The rule (docs/architecture.md, "Where to add … a docs page"):
 
 - A ```` ```python ```` block runs as written, in order within its page, as one script (one
   namespace per page; ``__name__ == "__main__"``), in a temporary folder. After an expression,
