@@ -167,8 +167,9 @@ def test_quick_blocks_run_as_written(path, langs, tmp_path):
 @pytest.mark.slow  # every block of every page, in order: minutes (the sum of the stated times)
 @pytest.mark.parametrize("path, langs", RUNS, ids=IDS)
 def test_all_blocks_run_as_written_in_their_stated_time(path, langs, tmp_path):
-    """Every step in order; a command runs within a few times its stated time (a loaded
-    machine is slower) and never beyond 2 minutes without a stated time."""
+    """Every step in order; a command's CPU time stays within a few times its stated time
+    (CPU time: other jobs on the machine do not count; a numba-threaded command uses up to
+    2 CPU seconds a second on 2 cores) and never beyond 2 minutes without a stated time."""
     took = _run(path, langs, True, tmp_path)
     stated = {c.where: c.seconds for s in steps(path, langs) if (c := s.command)}
     slow = {w: t for w, t in took.items()
