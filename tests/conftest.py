@@ -1,35 +1,48 @@
 """Test-wide settings: the sweep store of CLI runs goes to a temporary directory (removed
 at exit), never to the user's cache.
 
-``ROCKARCH_PERTURB=EPS`` (``make test-perturbed``, run by CI after ``make test``) multiplies
-the samples of every ground motion by ``1 + EPS``: every simulation then differs from the
-plain run in its last bits, as it would on another machine (other SIMD paths, other builds of
-numpy and numba). A test that pins a number beyond its physical tolerance fails there, on
-the developer's machine, before it fails on a user's.
+``ROCKARCH_PERTURB=1`` (``make test-perturbed``, run by CI after ``make test``) moves every
+ground motion in its last bit, in this process and in every Python process the tests start
+(tests/perturb/rockarch_perturb.py says how, and which invariances it keeps): every
+simulation then differs from the plain run in its last bits, as it would on another machine.
+A test that checks an exact construction opts out with ``@pytest.mark.unperturbed``.
 """
 
 import atexit
 import os
 import shutil
+import sys
 import tempfile
+from pathlib import Path
 
-import numpy as np
+import pytest
 
 _CACHE = tempfile.mkdtemp(prefix="rockarch-test-cache-")
 os.environ["ROCKARCH_CACHE"] = _CACHE
 atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)
 
-PERTURB = float(os.environ.get("ROCKARCH_PERTURB") or 0.0)
+_PERTURB_DIR = str(Path(__file__).parent / "perturb")
+if _PERTURB_DIR not in sys.path:
+    sys.path.insert(0, _PERTURB_DIR)
 
-if PERTURB:
-    from rockarch.motion.signals import GroundMotion
+import rockarch_perturb  # noqa: E402
 
-    _post_init = GroundMotion.__post_init__
+if rockarch_perturb.ENABLED:
+    rockarch_perturb.install()
+    # child processes (CLI runs, pool workers, the docs' scripts) start perturbed too
+    paths = os.environ.get("PYTHONPATH", "").split(os.pathsep)
+    if _PERTURB_DIR not in paths:
+        os.environ["PYTHONPATH"] = os.pathsep.join([_PERTURB_DIR, *filter(None, paths)])
 
-    def _perturbed_post_init(self) -> None:
-        _post_init(self)
-        a = np.asarray(self.a) * (1.0 + PERTURB)
-        a.setflags(write=False)
-        object.__setattr__(self, "a", a)
 
-    GroundMotion.__post_init__ = _perturbed_post_init
+@pytest.fixture(autouse=True)
+def _unperturbed(request):
+    """Turn the perturbation off for a test marked ``unperturbed`` (exact constructions)."""
+    if not rockarch_perturb.ENABLED or request.node.get_closest_marker("unperturbed") is None:
+        yield
+        return
+    rockarch_perturb.ENABLED = False
+    try:
+        yield
+    finally:
+        rockarch_perturb.ENABLED = True

@@ -29,7 +29,7 @@ SCRIPT = textwrap.dedent('''
     class SlowBlock(systems.BlockSystem):
         """A block whose chunks take a while, so that the sweep can be interrupted."""
         def run(self, motion, p, ratio):
-            time.sleep(0.08)
+            time.sleep(0.25)  # 16 chunks on 2 workers: ~2 s, time to interrupt it
             return super().run(motion, p, ratio)
 
     if __name__ == "__main__":
