@@ -157,6 +157,27 @@ def test_records_info_text(folder):
     assert "Vs30" in res.stdout and " 0.421 " in res.stdout  # 0.281 g × 1.5
 
 
+def test_records_info_pulse_methods(folder):
+    # El Centro 180: Baker (2007) indicator 0.09 (non-pulse) and the late flag; the class
+    # and the flags are separate columns and keys
+    res = runner.invoke(app, ["records", "info", str(folder), "--json"])
+    r = json.loads(res.stdout)["records"][0]
+    assert r["pulse_method"] == "2007" and r["pulse_class"] == "non-pulse"
+    assert r["pulse_late"] is True and r["pulse_low_pgv"] is False and not r["pulse_like"]
+    res = runner.invoke(app, ["records", "info", str(folder)])
+    line = next(x for x in res.stdout.splitlines() if "ELC180" in x)
+    assert " non-pulse " in line and " late " in line
+    for flag in ("--method", "--pulse-method"):
+        res = runner.invoke(app, ["records", "info", str(folder), flag, "2014", "--json"])
+        assert res.exit_code == 0, res.output
+        out = json.loads(res.stdout)
+        assert out["pulse_method"] == "2014"
+        assert {r["pulse_class"] for r in out["records"]} <= {"pulse", "non-pulse"}
+        assert all(r["pulse_low_pgv"] is False for r in out["records"])
+    res = runner.invoke(app, ["records", "info", str(folder), "--method", "2010"])
+    assert res.exit_code == 2 and "error: pulse method must be one of 2007, 2014" in res.stderr
+
+
 @pytest.mark.skipif(not SHARED.is_dir(), reason="shared record folder absent")
 def test_shared_records_match_their_readme_pgas():
     s = suite.read_suite(SHARED)

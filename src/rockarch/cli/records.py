@@ -12,6 +12,7 @@ from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
 from rockarch.core.constants import G_STANDARD
 from rockarch.motion import intensity, synthetic
 from rockarch.motion.suite import describe, read_suite
+from rockarch.motion.velocity_pulse import check_method
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.suite_plots import plot_spectra
@@ -43,21 +44,26 @@ def info(
     damping: float = typer.Option(intensity.DAMPING, help="Damping ratio of Sa(T)."),
     plot: Path = typer.Option(None, help="PNG of the records' Sa/PGA spectra, median and "
                               "16–84 % band."),
+    pulse_method: str = typer.Option("2007", "--pulse-method", "--method",
+                                     help="Velocity-pulse classification: 2007 (Baker "
+                                     "2007) or 2014 (Shahi & Baker 2014)."),
     json_out: bool = JSON_OPT,
 ) -> None:
     """Each record's event, station, component, dt, duration and intensity measures (PGA,
-    PGV, PGD, Arias, D5-95, Tm, Sa(T)) and Baker's (2007) pulse class and period; SI units
-    in --json."""
+    PGV, PGD, Arias, D5-95, Tm, Sa(T)) and its velocity-pulse class, flags and period
+    (Baker 2007, or Shahi & Baker 2014 with --pulse-method 2014); SI units in --json."""
     per = float_list("--periods", periods)
+    method = check_method(pulse_method)
     check_outputs((plot, "--plot", "png"))
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results, vertical=vertical)
-    rows = describe(suite, per, damping)
+    rows = describe(suite, per, damping, method)
     if plot is not None:
         save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),
-                    "damping": damping, "records": rows, "notes": list(suite.notes),
+                    "damping": damping, "pulse_method": method, "records": rows,
+                    "notes": list(suite.notes),
                     "plot": None if plot is None else str(plot)})
         return
     if suite.csv:
@@ -67,24 +73,36 @@ def info(
     meta = any(r["magnitude"] is not None or r["scale_factor"] is not None for r in rows)
     head = (f"{'record':40s} {'event':22s} {'station':26s} {'comp':>5s} {'dt':>6s} "
             f"{'dur':>6s} {'PGA[g]':>7s} {'PGV':>6s} {'PGD':>6s} {'Ia':>6s} "
-            f"{'D5-95':>6s} {'Tm':>5s} {'pulse':>10s} {'Tp':>5s}")
+            f"{'D5-95':>6s} {'Tm':>5s} {'pulse':>10s} {'flags':>11s} {'Tp':>5s}")
     typer.echo(head + (f" {'M':>5s} {'Rrup':>6s} {'Vs30':>6s} {'SF':>6s}" if meta else ""))
     for r in rows:
         line = (f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
                 f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
                 f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
                 f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
-                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {_num(r['tp'], 5, 2)}")
+                f"{r['tm']:5.2f} {r['pulse_class']:>10s} {_flags(r):>11s} "
+                f"{_num(r['tp'], 5, 2)}")
         if meta:
             line += "".join(f" {_num(r[k], w, d)}" for k, w, d in
                             (("magnitude", 5, 2), ("rrup", 6, 1), ("vs30", 6, 0),
                              ("scale_factor", 6, 3)))
         typer.echo(line)
-    typer.echo("units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s (Baker 2007 pulse "
+    source = "Baker 2007" if method == "2007" else "Shahi & Baker 2014"
+    typer.echo(f"pulse: class of the {source} indicator; flags: late (the pulse arrives "
+               "late)" + (", pgv<30 (PGV <= 30 cm/s)" if method == "2007" else "")
+               + "; pulse-like = class pulse and no flag")
+    typer.echo(f"units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s ({source} pulse "
                "period)" + ("; Rrup km, Vs30 m/s, SF csv scale factor" if meta else "")
                + "; Sa(T) in --json")
     if plot is not None:
         typer.echo(f"wrote {plot}")
+
+
+def _flags(row: dict) -> str:
+    """The pulse flags of a ``describe`` row: late, pgv<30, or "-"."""
+    flags = [name for key, name in (("pulse_late", "late"), ("pulse_low_pgv", "pgv<30"))
+             if row[key]]
+    return ",".join(flags) or "-"
 
 
 def _num(value, width: int, digits: int) -> str:

@@ -25,7 +25,7 @@ from rockarch.core.paths import atomic_write
 from rockarch.motion import intensity
 from rockarch.motion.records import read_record
 from rockarch.motion.signals import GroundMotion
-from rockarch.motion.velocity_pulse import baker_pulse
+from rockarch.motion.velocity_pulse import baker_pulse, check_method
 
 #: File suffixes read from a folder as two-column records (``.AT2`` is always read).
 TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
@@ -412,26 +412,31 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
 
 
 def describe(suite: Suite, periods: Sequence[float] | None = None,
-             damping: float | None = None) -> list[dict]:
+             damping: float | None = None, pulse_method: str = "2007") -> list[dict]:
     """Metadata and intensity measures of every record (``rockarch records info``): one dict
     per record, :meth:`SuiteRecord.metadata` plus the fields of
     :class:`rockarch.motion.intensity.IntensityMeasures` (``sa`` aligned with ``periods``) and the
-    Baker (2007) pulse classification (``pulse_indicator``, ``tp`` [s], ``pulse_like``,
-    ``classification``, :mod:`rockarch.motion.velocity_pulse`)."""
+    velocity-pulse classification of ``pulse_method`` (Baker 2007 or Shahi & Baker 2014,
+    :mod:`rockarch.motion.velocity_pulse`): ``pulse_method``, ``pulse_indicator``, ``tp``
+    [s], ``pulse_class`` (the indicator's class), the flags ``pulse_late`` and
+    ``pulse_low_pgv``, and ``pulse_like`` (the method's full criterion)."""
 
     per = intensity.PERIODS if periods is None else periods
     zeta = intensity.DAMPING if damping is None else damping
+    method = check_method(pulse_method)
     out = []
     for rec in suite:
         d = rec.metadata()
         d.update(intensity.measures(rec.motion, per, zeta).to_dict())
         try:
-            pulse = baker_pulse(rec.motion).to_dict()
-        except ValueError:  # a record shorter than the shortest pulse period
+            pulse = baker_pulse(rec.motion, method=method).to_dict()
+        except ValueError:  # a record shorter than the shortest pulse period, or PGV = 0
             pulse = {"pulse_indicator": None, "tp": None, "pulse_like": None,
-                     "classification": "-"}
-        d.update(pulse_indicator=pulse["pulse_indicator"], tp=pulse["tp"],
-                 pulse_like=pulse["pulse_like"], pulse_class=pulse["classification"])
+                     "classification": "-", "late": None, "low_pgv": None}
+        d.update(pulse_method=method, pulse_indicator=pulse["pulse_indicator"],
+                 tp=pulse["tp"], pulse_class=pulse["classification"],
+                 pulse_late=pulse["late"], pulse_low_pgv=pulse["low_pgv"],
+                 pulse_like=pulse["pulse_like"])
         out.append(d)
     return out
 
