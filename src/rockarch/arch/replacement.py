@@ -64,7 +64,8 @@ class ReplacementArch:
 
     @property
     def R_block(self) -> float:  # noqa: N802 - the field's name
-        """Half-diagonal of the equivalent slender block, R = 0.75·g/p² (Eq. 7.1) [m]."""
+        """Half-diagonal of the equivalent slender block, R = 0.75·g/p² [m] (Eq. 7.1: Housner's
+        1963 p² = 3g/(4R) of a rectangular block, solved for R)."""
         return 0.75 * self.mechanism.thrust.g / self.p**2
 
     def to_dict(self) -> dict:

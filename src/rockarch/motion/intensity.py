@@ -22,7 +22,7 @@ from rockarch.core.constants import G
 from rockarch.core.validate import finite_array, in_range, positive
 from rockarch.motion.signals import GroundMotion
 
-#: Default damping ratio of Sa(T).
+#: Default damping ratio of Sa(T): the 5 % of design spectra (a convention, not a fit).
 DAMPING = 0.05
 #: Default periods of Sa(T) [s] (``rockarch records info``).
 PERIODS = (0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
@@ -30,7 +30,8 @@ PERIODS = (0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
 #: steps; the peak between steps is missed by at most 1 − cos(π/N) ≈ (π/N)²/2 = 2e-4
 #: relative at N = 150.
 POINTS_PER_PERIOD = 150
-#: Frequency band of the mean period Tm [Hz] (Rathje et al. 1998, 2004).
+#: Frequency band of the mean period Tm [Hz]: 0.25–20 Hz, the band of the definition of
+#: Rathje, Abrahamson & Bray (1998, JGGE 124(2)), kept by Rathje et al. (2004).
 TM_BAND = (0.25, 20.0)
 #: Largest and smallest number of samples a non-uniformly sampled motion is resampled to.
 MAX_SAMPLES = 2_000_000
@@ -107,8 +108,8 @@ def pgd(motion: GroundMotion, order: int = 1) -> float:
 
 
 def arias(motion: GroundMotion, g: float = G) -> float:
-    """Arias intensity Ia = π/(2g) ∫ a_g² dt [m/s] (Eq. (11.4)), exact for piecewise-linear
-    a_g."""
+    """Arias intensity Ia = π/(2g) ∫ a_g² dt [m/s] (Arias 1970; Eq. (11.4)), exact for
+    piecewise-linear a_g."""
     return float(husid_integral(motion)[-1] * math.pi / (2.0 * positive("g", g)))
 
 

@@ -134,7 +134,7 @@ def harmonic(ap: float, period: float, cycles: int = 3) -> GroundMotion:
 
 
 def ricker(ap: float, period: float) -> GroundMotion:
-    """Ricker wavelet of peak ap and dominant period T = 1/f_p, centred at t0 = 1.5·T.
+    """Ricker (1953) wavelet of peak ap and dominant period T = 1/f_p, centred at t0 = 1.5·T.
 
     a = ap·(1 − 2π²f_p²τ²)·exp(−π²f_p²τ²), τ = t − t0, on [0, 3T] (the tails beyond are
     below 1e-8·ap).

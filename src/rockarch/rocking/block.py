@@ -26,7 +26,10 @@ _NO_TABLE = np.zeros((2, 3, 2))
 
 
 def housner_restitution(alpha: float) -> float:
-    """Housner's coefficient of restitution r = 1 − 1.5·sin²(alpha) (rectangular block)."""
+    """Housner's coefficient of restitution r = 1 − 1.5·sin²(alpha) of a rectangular block:
+    the ratio of angular velocities after and before impact from the conservation of
+    angular momentum about the new pivot (Housner 1963, BSSA 53(2); his energy ratio is its
+    square; docs/theory.md Eq. (1.6))."""
     return 1.0 - 1.5 * math.sin(alpha) ** 2
 
 
@@ -37,7 +40,7 @@ class RigidBlock:
     Parameters
     ----------
     p : float
-        Frequency parameter sqrt(3g / (4R)) [1/s].
+        Frequency parameter sqrt(3g / (4R)) [1/s] (Housner 1963; docs/theory.md Eq. (1.2)).
     alpha : float
         Slenderness angle atan(B/H) [rad], in (0, π/2).
     g : float
@@ -63,7 +66,8 @@ class RigidBlock:
     @classmethod
     def from_dimensions(cls, width: float, height: float, g: float = G,
                         restitution: float | None = None) -> RigidBlock:
-        """Block of full width B and full height H [m] (paper Eq. 1)."""
+        """Block of full width B and full height H [m] (paper Eq. 1): p = sqrt(3g/(4R)),
+        R the half-diagonal, and alpha = atan(B/H) (Housner 1963)."""
         b, h, g = positive("width B", width), positive("height H", height), positive("g", g)
         r_half = 0.5 * math.hypot(b, h)
         return cls(math.sqrt(3.0 * g / (4.0 * r_half)), math.atan2(b, h), g, restitution)

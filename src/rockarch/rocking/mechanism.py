@@ -227,8 +227,10 @@ def rocking_frame(alpha: float, p_column: float, mass_ratio: float, g: float = G
         A = (8/3 + 8·gamma)·R²,  V' = 2gR(1 + 2 gamma)·sin(alpha − q),
         Q = 2R(1 + 2 gamma)·cos(alpha − q),  delta = alpha,  ap,min = g·tan(alpha),
 
-    so p² = (3g/4R)·(1 + 2 gamma)/(1 + 3 gamma) (Makris & Vassiliou). The projection impact law
-    gives e = 1 − 1.5·sin²(alpha)·(1 + 4 gamma)/(1 + 3 gamma) (gamma = 0: Housner's block).
+    so p² = (3g/4R)·(1 + 2 gamma)/(1 + 3 gamma) (Makris & Vassiliou 2013, EESD 42(3), the
+    frame's frequency parameter). The projection impact law (docs/theory.md Eq. (5.3))
+    gives e = 1 − 1.5·sin²(alpha)·(1 + 4 gamma)/(1 + 3 gamma) (our derivation; gamma = 0:
+    Housner's 1963 block).
     """
     alpha = in_range("alpha", alpha, 0.0, math.pi / 2, lo_open=True, hi_open=True)
     p_column, g = positive("p_column", p_column), positive("g", g)

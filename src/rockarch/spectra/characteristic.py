@@ -13,6 +13,15 @@ record's boundary without simulating it (docs/theory.md Sect. 11.2):
   1/(1 − e^(−p t_I)) ~ 1/(p t_I) (overturning without impact, Eq. (11.23)) and
   C (cos α)/(p t_M)² (overturning after impact, Eq. (11.24)).
 
+The same two durations and three branches (a constant, one ∝ 1/p, one ≈ ∝ 1/p²) are
+proposed in the preprint "Towards physically justified, site-specific overturning
+acceleration response spectra" (SSRN 6181908, posted February 2026). The forms here are
+our own derivations, not taken from it: the exact no-impact curve 1/(1 − e^(−p t_I)) of
+the linearised block under a rectangular pulse, the constant C = 1.5 of the after-impact
+branch (a fixed-centre-of-mass argument, :data:`IMPACT_COEFF`), the definitions of t_I
+and t_M from the strongest one-signed velocity change, and the percentile over records;
+we have not compared our constants with the preprint's.
+
 :func:`characteristic` adds both to a site OAS (:func:`rockarch.spectra.site.site_oas`) and
 :func:`skill` measures how well each predicts the computed boundaries.
 """
@@ -29,8 +38,9 @@ from rockarch.motion.intensity import mean_period
 from rockarch.motion.signals import GroundMotion
 from rockarch.spectra import site
 
-#: Constant of the after-impact branch, Eq. (11.24): the base moves by the half-width
-#: R·sin(alpha) under a centre of mass at rest, R = 3g/(4p²): (3/4)(ap,min/p²)cos(alpha)
+#: Constant C of the after-impact branch, Eq. (11.24), our own (derived, not fitted, not
+#: from a paper): the base moves by the half-width R·sin(alpha) under a centre of mass at
+#: rest, R = 3g/(4p²) (Housner 1963; docs/theory.md Eq. (1.2)): (3/4)(ap,min/p²)cos(alpha)
 #: = A t_M²/2 with A = ratio·ap,min.
 IMPACT_COEFF = 1.5
 
@@ -89,7 +99,8 @@ def pulse_durations(motion: GroundMotion) -> PulseDurations:
 
 def rectangular_pulse_boundary(p, duration) -> np.ndarray:
     """Lowest ap/ap,min that overturns a slender block without impact under a rectangular
-    pulse of that duration: 1/(1 − e^(−p·t)) (linearised rocking, Eq. (11.23))."""
+    pulse of that duration: 1/(1 − e^(−p·t)) (linearised rocking, docs/theory.md Eq. (11.23),
+    our derivation; its limit 1/(p t) is the 1/p branch of SSRN 6181908)."""
     x = np.asarray(p, dtype=float) * duration
     with np.errstate(divide="ignore"):
         return 1.0 / -np.expm1(-x)
@@ -235,7 +246,8 @@ def log_skill(boundary, predicted) -> dict:
             "safe": float(np.mean(lr >= 0)), "pairs": int(use.sum())}
 
 
-#: p grid and ratio grid of a site OAS computed on the fly (``rockarch design --records``).
+#: p grid and ratio grid of a site OAS computed on the fly (``rockarch design --records``;
+#: our choice).
 DESIGN_P = np.round(np.geomspace(0.5, 10.0, 40), 6)
 DESIGN_RATIO = np.round(np.linspace(1.0, 5.0, 81), 12)
 
