@@ -4,7 +4,7 @@ records of ~40 s in <= 10 s on 2 cores).
 Run:  .venv/bin/python benchmarks/fragility.py [--records 50] [--p 2] [--workers 2]
 
 The suite is rockarch.motion.synthetic.synthetic_motions(N, seed=0) (Rezaeian & Der Kiureghian
-model; durations 12-77 s, mean ~34 s). Timed in the same run, best of ``--repeat``:
+model; durations 13-84 s, mean ~37 s). Timed in the same run, best of ``--repeat``:
 
 * reference: the plain loop a user writes without rockarch.risk.fragility: one
   ``rockarch.oas(block, record, p=[p], ratio=grid)`` per record (grid + bisection), then

@@ -6,7 +6,7 @@ Run:  .venv/bin/python benchmarks/fragility_mdof.py [--records 50] [--repeat 1]
 
 A circular arch (f/l = 0.5, d/l = 0.15, span 1 m scaled to its own p) over the first
 ``--records`` records of rockarch.motion.synthetic.synthetic_motions(50, seed=``--seed``) (seed
-1: 15-97 s, mean 39.5 s), scanned over ``--ratio-steps`` values of ap/ap,min from 1 to 5
+1: 15-88 s, mean 43 s), scanned over ``--ratio-steps`` values of ap/ap,min from 1 to 5
 with bisection to ``--tol`` (``--island-step K``: the adaptive scan). Every record is one
 task (its scan and bisection). Variants: a Dask LocalCluster of 1 and of 2 single-threaded
 workers, 2 local processes, and the plain in-process run (numba threads, no executor) as

@@ -33,7 +33,8 @@ from rockarch.systems import KINDS, batch, simulate, system  # noqa: E402
 
 
 def synthetic_suite(n: int, seed: int = 0, **kw) -> Suite:
-    """A :class:`Suite` of ``n`` seeded synthetic records (Rezaeian & Der Kiureghian model;
+    """A :class:`Suite` of ``n`` seeded synthetic records (Rezaeian & Der Kiureghian model,
+    parameters from their 2010 fitted distributions;
     :func:`rockarch.motion.synthetic.synthetic_suite`)."""
     from rockarch.motion.synthetic import synthetic_suite as _synthetic_suite
 

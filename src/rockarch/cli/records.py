@@ -122,8 +122,9 @@ def synth(
                                          "Papageorgiou 2003), 0…1."),
     json_out: bool = JSON_OPT,
 ) -> None:
-    """Synthetic records of the Rezaeian & Der Kiureghian (2008) stochastic model, written
-    as .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
+    """Synthetic records of the Rezaeian & Der Kiureghian (2008) stochastic model, their
+    parameters drawn from the distributions RDK (2010) fitted to NGA records, written as
+    .AT2 files with their parameters in _synthetic_parameters.csv (docs/sites.md)."""
     if f_corner < 0:
         raise ValueError(f"--f-corner must be >= 0, got {f_corner}")
     check_outputs((directory, "DIRECTORY", "dir"))

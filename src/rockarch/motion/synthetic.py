@@ -307,6 +307,13 @@ class TwoSidedExponential:
     lo: float
     hi: float
 
+    def __post_init__(self) -> None:
+        for name in ("a", "b", "c"):
+            positive(f"two-sided exponential {name}", getattr(self, name))
+        if not self.lo < 0.0 < self.hi:
+            raise ValueError(f"two-sided exponential needs lo < 0 < hi, got [{self.lo:g}, "
+                             f"{self.hi:g}]")
+
     def _raw(self, k: int, x0: float, x1: float, s: float) -> float:
         """c ∫ x^k e^(s x) dx over [x0, x1] in closed form: the antiderivative is
         e^(s x) Σ_j (−1)^j k!/(k − j)! x^(k−j) / s^(j+1)."""
