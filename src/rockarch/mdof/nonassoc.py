@@ -29,7 +29,8 @@ from scipy.optimize import linprog
 from scipy.sparse import csr_matrix, hstack, identity, vstack
 from tqdm import tqdm
 
-#: Relaxation factor of the normal forces that set the shear capacities (Eq. 10.7).
+#: Relaxation factor of the normal forces that set the shear capacities (Eq. 10.7); the
+#: value is our choice.
 RELAX = 0.5
 #: Largest number of Tresca LPs per direction.
 MAX_ITER = 100  # converged cases take 20-65 (walls up to 6 x 10 courses)

@@ -100,7 +100,8 @@ def ratio_bounds() -> tuple[float, float]:
 
 
 def modulation(p: RDKParameters, g: float = G) -> tuple[float, float, float]:
-    """(α1, α2, α3) of q(t) = α1 t^(α2−1) e^(−α3 t) with the expected Ia, D5–95 and t_mid.
+    """(α1, α2, α3) of RDK 2008's gamma modulating function q(t) = α1 t^(α2−1) e^(−α3 t)
+    with the expected Ia, D5–95 and t_mid.
 
     q² ∝ t^(k−1) e^(−λt) with k = 2α2 − 1 and λ = 2α3 is a gamma density, so the Husid
     function is the gamma distribution function: D5–95/t_mid fixes k, then λ =
@@ -121,7 +122,8 @@ def modulation(p: RDKParameters, g: float = G) -> tuple[float, float, float]:
 
 @nb.njit(cache=True)
 def _filtered_noise(u, dt, omega, zeta, cutoff):
-    """Σ_i h(t_k − t_i, ω_i) u_i / sqrt(Σ_i h²) at every t_k (Eq. (11.8)).
+    """Σ_i h(t_k − t_i, ω_i) u_i / sqrt(Σ_i h²) at every t_k: RDK 2008's normalised
+    time-varying filter of white noise (docs/theory.md Eq. (11.8)).
 
     The impulse response of pulse i is h(s) = ω_i/√(1−ζ²) e^(−ζω_i s) sin(ω_i √(1−ζ²) s),
     marched by one complex rotation per step and dropped once e^(−ζω_i s) < ``cutoff``.
