@@ -12,8 +12,8 @@ to identify strong-velocity pulses in multicomponent ground motions. BSSA 104(5)
 2. the pulse is the sum of 10 wavelets of that scale, each the largest projection on the
    residual left by the previous ones, sought within ±0.4·s of the first one's position
    (s the wavelet's time scale). This extraction is the one of Shahi & Baker's (2014)
-   code, used by both methods here; Baker (2007) sought the later wavelets over the whole
-   record, which we do not reproduce;
+   code, used by both methods here (the ±0.4·s window is the 2014 code's; Baker's 2007
+   extraction of the later wavelets is not reproduced);
 3. the classification, by ``method``:
 
    * ``"2007"`` (Baker 2007): PI = 1 / (1 + exp(−23.3 + 14.6 PGV_ratio + 20.5
