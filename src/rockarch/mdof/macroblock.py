@@ -60,8 +60,8 @@ def lowest(kin, mass, direction: int, lp, below: float, size: float):
                     if start < 0:
                         continue
                     s = _closure(int(start), pivot, omega, kin, tol)
-                    if s is None or s.all():
-                        continue
+                    if s is None:  # the whole structure is a cluster too: a block
+                        continue   # jammed against a support by self-stress rocks away
                     key = (s.tobytes(), k, c, omega)
                     if key in seen:
                         continue
