@@ -165,21 +165,23 @@ def _mechanism(dual, mass, inertia, centroid, corners, normal, body_a, body_b, d
     scale = w if w > 1e-9 * max(np.abs(vel).max(), 1e-300) else np.hypot(vel[:, 0],
                                                                            vel[:, 1]).max()
     vel = vel / scale if scale > 0 else vel
-    nj = len(normal)
     tang = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
-    rel = np.zeros((nj, 2, 2))
-    for k in range(nj):
-        for c in range(2):
-            pt = corners[k, c]
-            for body, sgn in ((body_b[k], 1.0), (body_a[k], -1.0)):
-                if body >= 0:
-                    u, v, om = vel[body]
-                    r = pt - centroid[body]
-                    rel[k, c] += sgn * np.array([u - om * r[1], v + om * r[0]])
+    rel = _corner_velocity(vel, centroid, corners, body_b) - _corner_velocity(
+        vel, centroid, corners, body_a)
     tol = 1e-6 * max(float(np.abs(rel).max()), 1e-300)
     opening = np.einsum("kcd,kd->kc", rel, normal) > tol
     slide = np.abs(np.einsum("kcd,kd->kc", rel, tang)).max(axis=1) > tol
     return vel, opening, slide
+
+
+def _corner_velocity(vel, centroid, corners, body) -> np.ndarray:
+    """(nj, 2, 2) velocity at both corners of every joint of the rigid motion ``vel`` of
+    ``body`` (zero for the ground, body -1)."""
+    on = (body >= 0)[:, None, None]
+    b = np.where(body >= 0, body, 0)
+    u, v, om = vel[b, 0][:, None], vel[b, 1][:, None], vel[b, 2][:, None]
+    r = corners - centroid[b][:, None, :]
+    return np.where(on, np.stack([u - om * r[..., 1], v + om * r[..., 0]], axis=-1), 0.0)
 
 
 def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, float]:
