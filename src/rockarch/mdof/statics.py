@@ -33,6 +33,7 @@ from scipy.sparse import coo_matrix
 from rockarch.core.constants import G
 from rockarch.mdof import macroblock as mb
 from rockarch.mdof import nonassoc as na
+from rockarch.mdof import statics_cache as sc
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
@@ -234,8 +235,27 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     if friction not in ("nonassociative", "associative"):
         raise ValueError(f"friction must be 'nonassociative' or 'associative', got {friction!r}")
     mass = np.asarray(mass, float)
+    mu = np.full(len(normal), np.inf) if mu is None else np.asarray(mu, float)
+    key = None
+    if sc.root() is not None:  # the result store (the CLI): a second build reuses it
+        inputs = tuple(np.asarray(v, dtype=float) for v in (
+            mass, inertia, centroid, corners, normal, body_a, body_b, mu))
+        key = sc.key((*inputs, float(g), direction, friction),
+                     (LAMBDA_CAP, na.MAX_ITER, na.RELAX, na.TOL_LAMBDA, na.TOL_FORCE))
+        hit = sc.load(key, Collapse)
+        if hit is not None:
+            return hit
+    out = _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, g=g,
+                 direction=direction, names=names, friction=friction)
+    if key is not None:
+        sc.save(key, out)
+    return out
+
+
+def _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, *, g: float,
+           direction: int | None, names, friction: str) -> Collapse:
+    """:func:`limit_analysis` itself (no store)."""
     nb_, nj = len(mass), len(normal)
-    mu = np.full(nj, np.inf) if mu is None else np.asarray(mu, float)
     if direction is None:  # both directions at once: HiGHS releases the GIL
         with ThreadPoolExecutor(max_workers=2) as pool:
             both = list(pool.map(lambda d: limit_analysis(
