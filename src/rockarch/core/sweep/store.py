@@ -107,21 +107,8 @@ class Store:
 
     def put(self, key: str, over: np.ndarray, resp: np.ndarray) -> None:
         """Write chunk ``key`` atomically."""
-        buf = io.BytesIO()
-        np.savez(buf, overturned=np.asarray(over, dtype=bool),
-                 max_response=np.asarray(resp, dtype=np.float64))
-        payload = buf.getvalue()
-        digest = hashlib.sha256(key.encode() + payload).hexdigest().encode()
-        path = self.path(key)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{key[:16]}-", suffix=".part")
-        try:
-            with os.fdopen(fd, "wb") as f:
-                f.write(_MAGIC + digest + b"\n" + payload)
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        _write(self.path(key), key, {"overturned": np.asarray(over, dtype=bool),
+                                     "max_response": np.asarray(resp, dtype=np.float64)})
         self.computed += 1
 
     def summary(self) -> str:
@@ -150,25 +137,30 @@ def read_record(root, kind: str, key: str) -> dict | None:
         return None
 
 
-def write_record(root, kind: str, key: str, arrays: dict) -> bool:
-    """Store ``arrays`` (name -> array) under ``root/kind/ab/KEY.npz`` atomically, with the
-    checksum of a chunk file. Best effort: False if the folder is not writable."""
+def _write(path: Path, key: str, arrays: dict) -> None:
+    """``arrays`` as an uncompressed .npz after the magic line and the SHA-256 of (key +
+    payload), written to a temporary name and renamed onto ``path``."""
     buf = io.BytesIO()
     np.savez(buf, **arrays)
     payload = buf.getvalue()
     digest = hashlib.sha256(key.encode() + payload).hexdigest().encode()
-    path = Path(root) / kind / key[:2] / f"{key}.npz"
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{key[:16]}-", suffix=".part")
-    except OSError:
-        return False
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{key[:16]}-", suffix=".part")
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(_MAGIC + digest + b"\n" + payload)
         os.replace(tmp, path)
-    except OSError:
+    except BaseException:
         Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_record(root, kind: str, key: str, arrays: dict) -> bool:
+    """Store ``arrays`` (name -> array) under ``root/kind/ab/KEY.npz`` atomically, with the
+    checksum of a chunk file. Best effort: False if the folder is not writable."""
+    try:
+        _write(Path(root) / kind / key[:2] / f"{key}.npz", key, arrays)
+    except OSError:
         return False
     return True
 
