@@ -112,7 +112,7 @@ def time_history(python: str) -> None:
         r = simulate(a, gm, t_free=1.5)
         th = np.abs(r.q[:, 0, 2]).max()
         t = np.asarray(gm.t, float)
-        acc = np.asarray(gm.acc, float)
+        acc = np.asarray(gm.a, float)
         v = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * np.diff(t))])
         t_all = np.concatenate([t, [t[-1] + 1.5]])
         v_all = np.concatenate([v, [v[-1]]])
