@@ -73,12 +73,19 @@ lock: | $(BIN)/python
 	sed -i '1i # What `make docs` installs on top of requirements.lock. Refresh with `make lock`.' \
 		requirements-docs.lock
 
-# Siconos oracle (docs/validation.md): installs python3-siconos for /usr/bin/python3 where
-# apt-get can, and skips cleanly where it cannot.
+# Oracles (docs/validation.md): Siconos (python3-siconos for /usr/bin/python3, where apt-get
+# can) and LMGC90 (compas-lmgc90 in its own virtual environment .venv-lmgc90: one simulation
+# per process, its Fortran state is global). Each skips cleanly where it cannot be installed.
+LMGC90_VENV := .venv-lmgc90
+
 validate: $(VENV)/.installed
 	-(apt-get update -qq && apt-get install -y -qq python3-siconos) >/dev/null 2>&1 \
 		|| echo "validate: could not install python3-siconos (not root or no apt)"
 	$(BIN)/python validation/siconos_compare.py
+	-(test -x $(LMGC90_VENV)/bin/python || $(PYTHON) -m venv $(LMGC90_VENV)) \
+		&& $(LMGC90_VENV)/bin/python -m pip install --quiet "compas-lmgc90==0.1.11" \
+		>/dev/null 2>&1 || echo "validate: could not install compas-lmgc90 (no wheel or no network)"
+	$(BIN)/python validation/lmgc90_compare.py --python $(LMGC90_VENV)/bin/python
 
 clean:
-	rm -rf $(VENV) .venv-oldest .venv-oldest.lock $(OUT) build site src/*.egg-info
+	rm -rf $(VENV) $(LMGC90_VENV) .venv-oldest .venv-oldest.lock $(OUT) build site src/*.egg-info

@@ -143,3 +143,16 @@ def test_bad_input_one_line(tmp_path):
     assert "belongs to --system mdof" in _error(
         ["oas", "--system", "block", "--alpha", "0.2", "--friction", "0.3", *PULSE,
          "--p", "2", "--ratio-steps", "1"])
+
+
+@pytest.mark.parametrize("mu", ["2", "10"])
+def test_block_beside_a_support_rocks_with_high_friction(tmp_path, mu):
+    # issue 23: this was "no rocking mechanism below 1000 g"; LMGC90 rocks it away at
+    # B/H·g = 3.924 m/s² (closed form; docs/validation.md)
+    f = tmp_path / "beside.json"
+    f.write_text(json.dumps({
+        "blocks": [{"polygon": [[0, 0], [0.4, 0], [0.4, 1], [0, 1]]}],
+        "supports": [[[-0.4, 0], [0, 0], [0, 0.5], [-0.4, 0.5]]]}))
+    out = _json(["simulate", "mdof", "--assembly", str(f), "--friction", mu, *PULSE,
+                 "--ratio", "0.5", "--json"])
+    assert out["ap_min"] == pytest.approx(0.4 * G, rel=1e-7) and out["overturned"] is False

@@ -46,6 +46,42 @@ def test_converged_state_is_coulomb_admissible_and_slides_without_dilatancy():
     assert c.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)
 
 
+BESIDE = {"blocks": [{"polygon": [[0, 0], [0.4, 0], [0.4, 1], [0, 1]], "name": "block"}],
+          "supports": [[[-0.4, 0], [0, 0], [0, 0.5], [-0.4, 0.5]]]}
+
+
+@pytest.mark.parametrize("mu", [0.5, 1.0, 2.0, 10.0, None])
+def test_block_beside_a_low_support_rocks_away_at_b_over_h_for_every_mu(mu):
+    # 0.4 x 1 m block beside a 0.4 x 0.5 m support: with mu > 1 the associative LP jams it
+    # (a self-stress against the support, lambda capped); Coulomb friction cannot hold that
+    # and the block rocks away about its outer corner at B/H g (closed form; LMGC90 and
+    # compas_cra agree, docs/validation.md). The whole structure is a macro-block (10.9).
+    from rockarch.mdof.assembly_file import assembly_from_dict
+
+    a = assembly_from_dict(dict(BESIDE, **({} if mu is None else {"friction": mu})))
+    assert a.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)
+    c = statics.collapse(a)
+    assert c.converged and c.direction == -1  # ground to -x: inertia pushes it away (+x)
+    assert c.velocity[0, 2] < 0 and c.velocity[0, 0] > 0  # clockwise about (0.4, 0)
+    k = int(np.flatnonzero(np.abs(a.normal[:, 0]) > 0.5)[0])  # the face on the support
+    assert c.opening[k].any()
+    tol = 1e-6 * float(a.mass.sum())  # the iteration's force tolerance (1e-7 of the weight)
+    inf = np.isinf(a.mu)[:, None]  # mu = inf: no limit once compressed
+    cap = np.where(inf, np.where(c.normal_force > 0, np.inf, 0.0),
+                   np.where(inf, 0.0, a.mu[:, None]) * c.normal_force)
+    assert np.all(np.abs(c.tangential_force) <= cap + tol)
+
+
+def test_stack_beside_a_support_rocks_as_one_cluster():
+    # two 0.4 x 0.5 m blocks beside the same support, mu = 10: the stack rocks away as one
+    # rigid cluster, B/H = 0.4 g; the top block alone would need 0.8 g
+    a = bd.from_polygons([[[0, 0], [0.4, 0], [0.4, 0.5], [0, 0.5]],
+                          [[0, 0.5], [0.4, 0.5], [0.4, 1], [0, 1]]],
+                         supports=[[[-0.4, 0], [0, 0], [0, 0.5], [-0.4, 0.5]]], mu=10.0)
+    c = statics.collapse(a)
+    assert c.ap_min == pytest.approx(0.4 * G, rel=LP_TOL) and c.moving.all()
+
+
 def test_no_convergence_takes_the_macro_block(monkeypatch):
     # an unconverged iterate is no solution: the end wedge (Eq. 10.9, 7/11 g closed form,
     # see test_assemblies) below the associative bound is taken, without a warning

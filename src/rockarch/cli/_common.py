@@ -62,8 +62,15 @@ def guarded(func: Callable) -> Callable:
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        from rockarch.mdof import statics_cache
+
+        # statics of assemblies kept in the store (--store / --no-store where the command
+        # has them, else the default store): a second command on a structure reuses them
+        store = None if kwargs.get("no_store") else (kwargs.get("store")
+                                                     or default_store_dir())
         try:
-            return func(*args, **kwargs)
+            with statics_cache.using(store):
+                return func(*args, **kwargs)
         except BrokenPipeError:
             # the reader stopped (`rockarch ... | head`): stop quietly, as Unix tools do
             devnull = os.open(os.devnull, os.O_WRONLY)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from pathlib import Path
 
@@ -173,6 +174,26 @@ def _mdof_header(a) -> str:
             "(Moreau–Jean, docs/mdof.md)")
 
 
+def _with_ramp(a, header: str, extra: dict) -> tuple[str, dict]:
+    """The header and JSON fields of --ramp (:func:`rockarch.mdof.ramp.ramp_onset`)."""
+    from rockarch.mdof.ramp import ramp_onset
+
+    r = ramp_onset(a)
+    side = {1: "+x", -1: "-x"}
+    if math.isfinite(r.ap_onset):
+        other = r.onsets[-r.direction]
+        rest = (f"{side[-r.direction]} at {other:.4g} m/s²" if math.isfinite(other) else
+                f"{side[-r.direction]} stands up to {r.end:.4g} m/s²")
+        line = (f"ramp {r.rate / a.g:g} g/s from rest: a mechanism starts at "
+                f"{r.ap_onset:.4g} m/s² = {r.ap_onset / a.ap_min:.4g} ap,min (ground to "
+                f"{side[r.direction]}; {rest}); ap,min is the lowest static solution")
+    else:
+        line = f"ramp {r.rate / a.g:g} g/s from rest: nothing moves up to {r.end:.4g} m/s²"
+    return f"{header}\n{line}", {**extra, "ap_ramp": r.ap_onset,
+                                 "ramp_direction": r.direction,
+                                 "ramp_onsets": {side[k]: v for k, v in r.onsets.items()}}
+
+
 @simulate_app.command("mdof")
 @guarded
 @options(MDOF, MOTION + RATIO, MDOF_STEP, before="t_free")
@@ -182,6 +203,10 @@ def simulate_mdof(
     json_out: bool = JSON_OPT,
     mechanism: Path = typer.Option(None, help="Also write a PNG of the static collapse "
                                    "mechanism (docs/theory.md §10)."),
+    ramp: bool = typer.Option(False, "--ramp", help="Also report the ground acceleration at "
+                              "which the engine starts a mechanism under a slow ramp (0.1 "
+                              "g/s, from rest, both directions), beside ap,min: walls with "
+                              "high friction stand above it (docs/assemblies.md)."),
     **opts,
 ) -> None:
     """Simulate a multi-block structure whose joints open, close and (with --friction)
@@ -193,8 +218,10 @@ def simulate_mdof(
     sysobj = _mdof_system(opts, t_free, g)
     if mechanism is not None:
         plot_collapse(sysobj.assembly, mechanism)
-    _run(sysobj, _mdof_header(sysobj.assembly), {**opts, "plot": plot, "json_out": json_out},
-         extra={"ap_min": sysobj.ap_min})
+    header, extra = _mdof_header(sysobj.assembly), {"ap_min": sysobj.ap_min}
+    if ramp:
+        header, extra = _with_ramp(sysobj.assembly, header, extra)
+    _run(sysobj, header, {**opts, "plot": plot, "json_out": json_out}, extra=extra)
     if mechanism is not None and not json_out:
         typer.echo(f"wrote {mechanism}")
 

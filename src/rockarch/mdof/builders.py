@@ -21,6 +21,7 @@ step, the OAS p axis and the rotation ratio; sliding does not change them).
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
@@ -90,8 +91,12 @@ def assemble(*, name: str, kind: str, mass, inertia, centroid, polygons, joints,
     centroid = np.asarray(centroid, float)
     inertia = np.asarray(inertia, float)
     args = (mass, inertia, centroid, corners, normal, body_a, body_b)
-    fric = limit_analysis(*args, mus, g=g, names=names)
-    rock = fric if np.all(np.isinf(mus)) else limit_analysis(*args, None, g=g, names=names)
+    if np.all(np.isinf(mus)):
+        fric = rock = limit_analysis(*args, mus, g=g, names=names)
+    else:  # with and without sliding at once (HiGHS releases the GIL: two cores busy)
+        with ThreadPoolExecutor(max_workers=2) as pool:
+            fric, rock = pool.map(lambda m: limit_analysis(*args, m, g=g, names=names),
+                                  (mus, None))
     # the reference mechanism (p_ref, delta_ref): the no-sliding one; if nothing can rock
     # without sliding (a block against a support), the friction one
     ref = rock if math.isfinite(rock.ap_min) else fric

@@ -13,6 +13,9 @@ running-bond wall. :func:`lowest` returns the least confirmed one below a given 
 
 from __future__ import annotations
 
+import hashlib
+import threading
+
 import numpy as np
 from scipy.optimize import linprog
 
@@ -42,16 +45,30 @@ def _closure(start: int, pivot, omega: float, kin, tol: float):
         ins[other] = True
 
 
-def lowest(kin, mass, direction: int, lp, below: float, size: float):
-    """The least macro-block solution with λ < ``below`` (Eq. 10.9), or None.
+#: Clusters of recent geometries (both load directions and both friction analyses of one
+#: build share them: the enumeration is a second on a 205-block wall).
+_CACHE: dict = {}
+_CACHE_LOCK = threading.Lock()
 
-    ``kin`` = (centroid, corners, normal, body_a, body_b); ``lp(zero)`` solves Eq. (10.4)
-    with the corner forces of the (nj, 2) mask ``zero`` set to 0 and returns scipy's result.
-    Returns an :class:`Iterate` whose ``duals`` are the cluster's rigid rotation.
-    """
+
+def clusters(kin, size: float) -> list:
+    """Every distinct (S, k, c, ω) of Eq. (10.9): cluster S (an (nb,) bool mask) grown from
+    a block of joint k rotating at rate ω about corner c of k. Geometry only (no load
+    direction, no friction); cached for the last few geometries."""
+    key = hashlib.sha1(b"".join(np.ascontiguousarray(v).tobytes() for v in kin)
+                       + np.float64(size).tobytes()).hexdigest()
+    with _CACHE_LOCK:  # held throughout: the other direction's thread waits and reuses
+        if key not in _CACHE:
+            if len(_CACHE) >= 4:
+                _CACHE.pop(next(iter(_CACHE)))
+            _CACHE[key] = _enumerate(kin, size)
+        return _CACHE[key]
+
+
+def _enumerate(kin, size: float) -> list:
     centroid, corners, normal, body_a, body_b = kin
     nj, tol = len(normal), 1e-9 * size
-    seen, cands = set(), []
+    seen, out = set(), []
     for k in range(nj):
         for c in range(2):
             pivot = corners[k, c]
@@ -60,19 +77,33 @@ def lowest(kin, mass, direction: int, lp, below: float, size: float):
                     if start < 0:
                         continue
                     s = _closure(int(start), pivot, omega, kin, tol)
-                    if s is None or s.all():
-                        continue
-                    key = (s.tobytes(), k, c, omega)
-                    if key in seen:
-                        continue
-                    seen.add(key)
-                    r = centroid[s] - pivot
-                    m_in = direction * float(np.sum(mass[s] * r[:, 1]))
-                    if omega * m_in <= 0:  # inertia must drive the rotation
-                        continue
-                    lam = float(np.sum(mass[s] * r[:, 0])) / m_in
-                    if 0 <= lam < below * (1 - 1e-9):
-                        cands.append((lam, s, k, c, omega))
+                    if s is None:  # the whole structure is a cluster too: a block
+                        continue   # jammed against a support by self-stress rocks away
+                    key_s = (s.tobytes(), k, c, omega)
+                    if key_s not in seen:
+                        seen.add(key_s)
+                        out.append((s, k, c, omega))
+    return out
+
+
+def lowest(kin, mass, direction: int, lp, below: float, size: float):
+    """The least macro-block solution with λ < ``below`` (Eq. 10.9), or None.
+
+    ``kin`` = (centroid, corners, normal, body_a, body_b); ``lp(zero)`` solves Eq. (10.4)
+    with the corner forces of the (nj, 2) mask ``zero`` set to 0 and returns scipy's result.
+    Returns an :class:`Iterate` whose ``duals`` are the cluster's rotation.
+    """
+    centroid, corners = kin[0], kin[1]
+    body_a, body_b = kin[3], kin[4]
+    cands = []
+    for s, k, c, omega in clusters(kin, size):
+        r = centroid[s] - corners[k, c]
+        m_in = direction * float(np.sum(mass[s] * r[:, 1]))
+        if omega * m_in <= 0:  # inertia must drive the rotation
+            continue
+        lam = float(np.sum(mass[s] * r[:, 0])) / m_in
+        if 0 <= lam < below * (1 - 1e-9):
+            cands.append((lam, s, k, c, omega))
     for lam, s, k, c, omega in sorted(cands, key=lambda t: t[0]):
         zero = np.repeat((np.append(s, False)[body_a] ^ np.append(s, False)[body_b])[:, None],
                          2, axis=1)

@@ -19,15 +19,15 @@ convergence the smallest load multiplier of the iterates is returned with a warn
 
 from __future__ import annotations
 
-import math
 import sys
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import linprog
 from scipy.sparse import csr_matrix, hstack, identity, vstack
 from tqdm import tqdm
+
+from rockarch.mdof.highs import Model
 
 #: Relaxation factor of the normal forces that set the shear capacities (Eq. 10.7); the
 #: value is our choice.
@@ -66,40 +66,52 @@ def shear_caps(mu: np.ndarray, normal: np.ndarray, weight: float) -> np.ndarray:
     return np.where(~fin & (normal <= 1e-9 * weight), 0.0, cap)
 
 
-def _bounds(cap: np.ndarray, cap_lambda: float) -> list:
-    nj = cap.shape[0]
-    tb = [(None, None) if math.isinf(c) else (-c, c) for c in cap.reshape(-1)]
-    return [(0.0, None)] * (2 * nj) + tb + [(0.0, cap_lambda)]
+class _Solver:
+    """The LPs (10.6) and (10.8) of one load direction, kept alive between iterations
+    (:class:`rockarch.mdof.highs.Model`): every solve starts from the previous optimal basis,
+    so it is fast and returns the optimal vertex nearest to the previous one. Without that
+    (scipy's linprog, a fresh solve each time) the 205-block walls' iteration wandered
+    between vertices of the degenerate LPs and did not converge in 100 LPs."""
 
+    def __init__(self, a_eq, b_eq, nj: int, cap_lambda: float) -> None:
+        m, n, rows = 2 * nj, a_eq.shape[1], a_eq.shape[0]
+        self.m, self.n, self.rows = m, n, rows
+        lo = np.r_[np.zeros(m), np.full(m, -np.inf), 0.0]
+        hi = np.r_[np.full(2 * m, np.inf), cap_lambda]
+        cost = np.zeros(n)
+        cost[-1] = -1.0
+        self.tresca = Model(a_eq, lo, hi, cost, b_eq, b_eq)
+        # (10.8): e >= |N - Ñ| as N - e <= Ñ and N + e >= Ñ (row bounds set per call)
+        eye = identity(m, format="csr")
+        pad = csr_matrix((m, n - m))
+        a2 = vstack([hstack([a_eq, csr_matrix((rows, m))]), hstack([eye, pad, -eye]),
+                     hstack([eye, pad, eye])])
+        self.select = Model(a2, np.r_[lo, np.zeros(m)], np.r_[hi, np.full(m, np.inf)],
+                            np.zeros(n + m), np.r_[b_eq, np.full(2 * m, -np.inf)],
+                            np.r_[b_eq, np.full(2 * m, np.inf)])
+        self.t_cols = np.arange(m, 2 * m)
 
-def tresca_lp(a_eq, b_eq, cap: np.ndarray, cap_lambda: float):
-    """max λ under (10.2) with N ≥ 0 and |T| ≤ cap (Eq. 10.6): scipy's result object."""
-    n = a_eq.shape[1]
-    cost = np.zeros(n)
-    cost[-1] = -1.0
-    return linprog(cost, A_eq=a_eq, b_eq=b_eq, bounds=_bounds(cap, cap_lambda),
-                   method="highs")
+    def solve_tresca(self, cap: np.ndarray) -> Iterate | None:
+        """max λ under (10.2) with N ≥ 0 and |T| ≤ cap (Eq. 10.6)."""
+        c = cap.reshape(-1)
+        self.tresca.col_bounds(self.t_cols, -c, c)
+        out = self.tresca.solve()
+        return None if out is None else Iterate(float(out[0][-1]), out[0], out[1])
 
-
-def select(a_eq, b_eq, cap, lam: float, target: np.ndarray, sliding: np.ndarray,
-           cap_lambda: float) -> np.ndarray | None:
-    """Among the fields carrying λ (Eq. 10.8): least normal force at sliding joints, and
-    closest (L1) to ``target`` elsewhere. Returns the normal forces (nj, 2) or None."""
-    nj = cap.shape[0]
-    m, n = 2 * nj, a_eq.shape[1]
-    free = np.repeat(~np.asarray(sliding, bool), 2)
-    eye = identity(m, format="csr")
-    pad = csr_matrix((m, n - m))
-    a_ub = vstack([hstack([eye, pad, -eye]), hstack([-eye, pad, -eye])]).tocsr()
-    t = target.reshape(-1)
-    b_ub = np.concatenate([t, -t])
-    a2 = hstack([a_eq, csr_matrix((a_eq.shape[0], m))]).tocsr()
-    bounds = _bounds(cap, cap_lambda)[:-1] + [(lam * (1 - 1e-9), lam)] + [(0.0, None)] * m
-    cost = np.concatenate([np.where(free, 0.0, 1.0), np.zeros(n - m),
-                           np.where(free, 1.0, 0.0)])
-    res = linprog(cost, A_ub=a_ub, b_ub=b_ub, A_eq=a2, b_eq=b_eq, bounds=bounds,
-                  method="highs")
-    return res.x[:m].reshape(nj, 2) if res.status == 0 else None
+    def solve_select(self, cap, lam: float, target, sliding) -> np.ndarray | None:
+        """Among the fields carrying λ (Eq. 10.8): least normal force at sliding joints, and
+        closest (L1) to ``target`` elsewhere. The normal forces (nj, 2), or None."""
+        m, n = self.m, self.n
+        c, t = cap.reshape(-1), target.reshape(-1)
+        free = np.repeat(~np.asarray(sliding, bool), 2)
+        sel = self.select
+        sel.col_bounds(self.t_cols, -c, c)
+        sel.col_bounds([n - 1], [lam * (1 - 1e-9)], [lam])
+        sel.row_bounds(np.arange(self.rows, self.rows + 2 * m),
+                       np.r_[np.full(m, -np.inf), t], np.r_[t, np.full(m, np.inf)])
+        sel.costs(np.r_[np.where(free, 0.0, 1.0), np.zeros(n - m), np.where(free, 1.0, 0.0)])
+        out = sel.solve()
+        return None if out is None else out[0][:m].reshape(-1, 2)
 
 
 def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
@@ -107,14 +119,19 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
             progress: bool | None = None) -> Outcome:
     """Gilbert–Casapulla–Ahmed iteration from the associative state (Eqs. 10.6–10.8).
 
-    ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Convergence:
-    |Δλ| ≤ 1e-9·max(1, λ) and max|N − Ñ| ≤ 1e-7·Σ m·g. Without it (or when frozen
-    capacities cannot carry gravity) the least λ of the iterates and of ``start`` (every
-    solution lies below the associative one) is returned, not converged
-    (:func:`warn_unconverged` says so). ``desc``: a progress bar of the LPs on stderr
-    (line ``position``), shown if ``progress`` (default: when stderr is a terminal).
+    ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Joints of finite μ
+    relax their normal forces (10.7); joints of μ = ∞ take the new ones at once (their
+    capacity depends only on whether a corner is compressed, so relaxing would only creep
+    towards zero, one halving per LP). Convergence: |Δλ| ≤ 1e-9·max(1, λ),
+    max|N − Ñ| ≤ 1e-7·Σ m·g at finite-μ joints and the same compressed corners at μ = ∞
+    joints. Without it (or when frozen capacities cannot carry gravity) the least λ of the
+    iterates and of ``start`` (every solution lies below the associative one) is returned,
+    not converged (:func:`warn_unconverged` says so). ``desc``: a progress bar of the LPs on
+    stderr (line ``position``), shown if ``progress`` (default: when stderr is a terminal).
     """
     nj = len(mu)
+    fin = np.isfinite(np.asarray(mu, float))[:, None]
+    lps = _Solver(a_eq, b_eq, nj, cap_lambda)
     nt = start.x[:2 * nj].reshape(nj, 2).copy()
     lam_prev, best, hist = start.lambda_, start, []
     show = desc is not None and (sys.stderr.isatty() if progress is None else progress)
@@ -123,22 +140,21 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
         for k in range(MAX_ITER):
             bar.update(1)
             cap = shear_caps(mu, nt, weight)
-            res = tresca_lp(a_eq, b_eq, cap, cap_lambda)
-            if res.status != 0:
+            cur = lps.solve_tresca(cap)
+            if cur is None:
                 break
-            cur = Iterate(float(res.x[-1]), res.x, np.asarray(res.eqlin.marginals))
             hist.append(cur.lambda_)
             if 0 < cur.lambda_ < best.lambda_:  # above (10.4): no solution; 0: frozen caps
                 best = cur
-            n_new = select(a_eq, b_eq, cap, cur.lambda_, nt, sliding_of(cur.duals),
-                           cap_lambda)
+            n_new = lps.solve_select(cap, cur.lambda_, nt, sliding_of(cur.duals))
             if n_new is None:
-                n_new = res.x[:2 * nj].reshape(nj, 2)
-            err = float(np.abs(n_new - nt).max()) / weight
+                n_new = cur.x[:2 * nj].reshape(nj, 2)
+            err = float(np.abs(np.where(fin, n_new - nt, 0.0)).max()) / weight
+            zero = 1e-9 * weight
             if (abs(cur.lambda_ - lam_prev) <= TOL_LAMBDA * max(1.0, cur.lambda_)
-                    and err <= TOL_FORCE):
+                    and err <= TOL_FORCE and np.array_equal(n_new <= zero, nt <= zero)):
                 return Outcome(cur, True, k + 1, tuple(hist))
-            lam_prev, nt = cur.lambda_, nt + RELAX * (n_new - nt)
+            lam_prev, nt = cur.lambda_, np.where(fin, nt + RELAX * (n_new - nt), n_new)
     return Outcome(best, False, len(hist), tuple(hist))
 
 

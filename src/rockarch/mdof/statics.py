@@ -33,6 +33,7 @@ from scipy.sparse import coo_matrix
 from rockarch.core.constants import G
 from rockarch.mdof import macroblock as mb
 from rockarch.mdof import nonassoc as na
+from rockarch.mdof import statics_cache as sc
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
@@ -165,21 +166,23 @@ def _mechanism(dual, mass, inertia, centroid, corners, normal, body_a, body_b, d
     scale = w if w > 1e-9 * max(np.abs(vel).max(), 1e-300) else np.hypot(vel[:, 0],
                                                                            vel[:, 1]).max()
     vel = vel / scale if scale > 0 else vel
-    nj = len(normal)
     tang = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
-    rel = np.zeros((nj, 2, 2))
-    for k in range(nj):
-        for c in range(2):
-            pt = corners[k, c]
-            for body, sgn in ((body_b[k], 1.0), (body_a[k], -1.0)):
-                if body >= 0:
-                    u, v, om = vel[body]
-                    r = pt - centroid[body]
-                    rel[k, c] += sgn * np.array([u - om * r[1], v + om * r[0]])
+    rel = _corner_velocity(vel, centroid, corners, body_b) - _corner_velocity(
+        vel, centroid, corners, body_a)
     tol = 1e-6 * max(float(np.abs(rel).max()), 1e-300)
     opening = np.einsum("kcd,kd->kc", rel, normal) > tol
     slide = np.abs(np.einsum("kcd,kd->kc", rel, tang)).max(axis=1) > tol
     return vel, opening, slide
+
+
+def _corner_velocity(vel, centroid, corners, body) -> np.ndarray:
+    """(nj, 2, 2) velocity at both corners of every joint of the rigid motion ``vel`` of
+    ``body`` (zero for the ground, body -1)."""
+    on = (body >= 0)[:, None, None]
+    b = np.where(body >= 0, body, 0)
+    u, v, om = vel[b, 0][:, None], vel[b, 1][:, None], vel[b, 2][:, None]
+    r = corners - centroid[b][:, None, :]
+    return np.where(on, np.stack([u - om * r[..., 1], v + om * r[..., 0]], axis=-1), 0.0)
 
 
 def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, float]:
@@ -232,8 +235,27 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     if friction not in ("nonassociative", "associative"):
         raise ValueError(f"friction must be 'nonassociative' or 'associative', got {friction!r}")
     mass = np.asarray(mass, float)
+    mu = np.full(len(normal), np.inf) if mu is None else np.asarray(mu, float)
+    key = None
+    if sc.root() is not None:  # the result store (the CLI): a second build reuses it
+        inputs = tuple(np.asarray(v, dtype=float) for v in (
+            mass, inertia, centroid, corners, normal, body_a, body_b, mu))
+        key = sc.key((*inputs, float(g), direction, friction),
+                     (LAMBDA_CAP, na.MAX_ITER, na.RELAX, na.TOL_LAMBDA, na.TOL_FORCE))
+        hit = sc.load(key, Collapse)
+        if hit is not None:
+            return hit
+    out = _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, g=g,
+                 direction=direction, names=names, friction=friction)
+    if key is not None:
+        sc.save(key, out)
+    return out
+
+
+def _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, *, g: float,
+           direction: int | None, names, friction: str) -> Collapse:
+    """:func:`limit_analysis` itself (no store)."""
     nb_, nj = len(mass), len(normal)
-    mu = np.full(nj, np.inf) if mu is None else np.asarray(mu, float)
     if direction is None:  # both directions at once: HiGHS releases the GIL
         with ThreadPoolExecutor(max_workers=2) as pool:
             both = list(pool.map(lambda d: limit_analysis(

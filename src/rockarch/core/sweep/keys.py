@@ -88,6 +88,20 @@ def chunk_key(system, motion, p, ratio) -> str:
     return _key_of(_base_hash(system, motion), p, ratio)
 
 
+def content_key(tag: str, *objs) -> str:
+    """SHA-256 (hex) of ``objs`` under the recipe of :func:`chunk_key` (the store format,
+    the rockarch / numpy / numba versions and :func:`code_digest`), for results other than
+    chunks that the store keeps (``tag`` names their kind, e.g. the statics of an
+    assembly, :mod:`rockarch.mdof.statics_cache`)."""
+    import numba
+
+    h = hashlib.sha256()
+    _feed(h, (f"rockarch-{tag}", STORE_FORMAT, __version__, code_digest(), np.__version__,
+              numba.__version__))
+    _feed(h, objs)
+    return h.hexdigest()
+
+
 def _base_hash(system, motion):
     """The hash state after the versions, the system and the motion (shared by every chunk
     of a sweep: hashed once, copied per chunk)."""

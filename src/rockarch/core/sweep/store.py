@@ -107,26 +107,62 @@ class Store:
 
     def put(self, key: str, over: np.ndarray, resp: np.ndarray) -> None:
         """Write chunk ``key`` atomically."""
-        buf = io.BytesIO()
-        np.savez(buf, overturned=np.asarray(over, dtype=bool),
-                 max_response=np.asarray(resp, dtype=np.float64))
-        payload = buf.getvalue()
-        digest = hashlib.sha256(key.encode() + payload).hexdigest().encode()
-        path = self.path(key)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{key[:16]}-", suffix=".part")
-        try:
-            with os.fdopen(fd, "wb") as f:
-                f.write(_MAGIC + digest + b"\n" + payload)
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        _write(self.path(key), key, {"overturned": np.asarray(over, dtype=bool),
+                                     "max_response": np.asarray(resp, dtype=np.float64)})
         self.computed += 1
 
     def summary(self) -> str:
         return (f"store {self.root}: {self.reused} chunks reused, {self.computed} computed"
                 + (f", {self.corrupt} corrupt (recomputed)" if self.corrupt else ""))
+
+
+def read_record(root, kind: str, key: str) -> dict | None:
+    """The arrays stored under ``root/kind/ab/KEY.npz`` by :func:`write_record`, or None
+    (missing, unreadable or corrupt: a corrupt file is deleted, the caller recomputes)."""
+    path = Path(root) / kind / key[:2] / f"{key}.npz"
+    try:
+        data = path.read_bytes()
+        if not data.startswith(_MAGIC):
+            raise ValueError("bad header")
+        digest, payload = data[len(_MAGIC):len(_MAGIC) + 64], data[len(_MAGIC) + 65:]
+        if hashlib.sha256(key.encode() + payload).hexdigest().encode() != digest:
+            raise ValueError("checksum mismatch")
+        with np.load(io.BytesIO(payload), allow_pickle=False) as z:
+            return {k: z[k] for k in z.files}
+    except FileNotFoundError:
+        return None
+    except Exception:  # noqa: BLE001 - any damage means: recompute
+        with contextlib.suppress(OSError):
+            path.unlink(missing_ok=True)
+        return None
+
+
+def _write(path: Path, key: str, arrays: dict) -> None:
+    """``arrays`` as an uncompressed .npz after the magic line and the SHA-256 of (key +
+    payload), written to a temporary name and renamed onto ``path``."""
+    buf = io.BytesIO()
+    np.savez(buf, **arrays)
+    payload = buf.getvalue()
+    digest = hashlib.sha256(key.encode() + payload).hexdigest().encode()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{key[:16]}-", suffix=".part")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(_MAGIC + digest + b"\n" + payload)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_record(root, kind: str, key: str, arrays: dict) -> bool:
+    """Store ``arrays`` (name -> array) under ``root/kind/ab/KEY.npz`` atomically, with the
+    checksum of a chunk file. Best effort: False if the folder is not writable."""
+    try:
+        _write(Path(root) / kind / key[:2] / f"{key}.npz", key, arrays)
+    except OSError:
+        return False
+    return True
 
 
 def _warn(message: str) -> None:
@@ -161,19 +197,25 @@ class StoreInfo:
                 "bytes": self.size}
 
 
+#: Folders of a store: finished chunks, and the records of :func:`write_record`.
+_KINDS = ("chunks", "statics")
+
+
 def _store_files(root: Path):
-    """(path, is_chunk) of every file that a store wrote under ``root/chunks``."""
-    chunks = root / "chunks"
-    if not chunks.is_dir():
-        return
-    for sub in sorted(chunks.iterdir()):
-        if not (sub.is_dir() and _SUBDIR_NAME.match(sub.name)):
+    """(path, is_chunk) of every file that a store wrote under ``root/chunks`` (and the
+    records under ``root/statics``, counted in the size, not as chunks)."""
+    for kind in _KINDS:
+        folder = root / kind
+        if not folder.is_dir():
             continue
-        for f in sorted(sub.iterdir()):
-            if _CHUNK_NAME.match(f.name) and f.is_file():
-                yield f, True
-            elif _PART_NAME.match(f.name) and f.is_file():
-                yield f, False
+        for sub in sorted(folder.iterdir()):
+            if not (sub.is_dir() and _SUBDIR_NAME.match(sub.name)):
+                continue
+            for f in sorted(sub.iterdir()):
+                if _CHUNK_NAME.match(f.name) and f.is_file():
+                    yield f, kind == "chunks"
+                elif _PART_NAME.match(f.name) and f.is_file():
+                    yield f, False
 
 
 def _root(root) -> Path:
@@ -200,11 +242,12 @@ def clear_store(root=None) -> StoreInfo:
     try:
         for f, _ in _store_files(root):
             f.unlink(missing_ok=True)
-        chunks = root / "chunks"
-        for sub in sorted(chunks.iterdir()) if chunks.is_dir() else []:
-            if sub.is_dir() and _SUBDIR_NAME.match(sub.name):
-                with contextlib.suppress(OSError):  # not empty: someone else's files
-                    sub.rmdir()
+        for kind in _KINDS:
+            folder = root / kind
+            for sub in sorted(folder.iterdir()) if folder.is_dir() else []:
+                if sub.is_dir() and _SUBDIR_NAME.match(sub.name):
+                    with contextlib.suppress(OSError):  # not empty: someone else's files
+                        sub.rmdir()
     except OSError as exc:
         raise ValueError(f"{root}: cannot clear the store ({exc.strerror or exc})") from None
     return removed

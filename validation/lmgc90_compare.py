@@ -1,0 +1,160 @@
+"""rockarch's statics and one time history against LMGC90 (docs/validation.md, "LMGC90").
+
+    .venv/bin/python validation/lmgc90_compare.py [--python .venv-lmgc90/bin/python] [--quick]
+
+LMGC90 (the reference contact-dynamics code for masonry; compas-lmgc90 0.1.11, its own
+virtual environment made by `make validate`) runs one case per process
+(validation/lmgc90_oracle.py). Statics: the assembly tilted by atan(lambda) under vertical
+gravity (a uniform horizontal ground acceleration lambda·g in rockarch's collapse
+direction); "stands" = the largest centroid displacement stays below 1 mm over 1.5 s at
+dt = 1e-3 s; bisection on lambda to 0.4 % from a bracket around rockarch's ap_min. Contact
+law IQS_CLB_g0 (unilateral, inelastic, Coulomb without dilatancy). The same convex polygons
+go to both codes (an arch's voussoirs as the quadrilaterals of their joint corners).
+Time history: a 0.4 x 1 m block under a one-cycle sine pulse of its ground (LMGC90: the
+supports driven at the ground velocity), the largest rotation and the verdict.
+Prints one line per case; exits 0 (a comparison, not a test).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from rockarch.arch import catenary, voussoirs
+from rockarch.mdof import builders as bd
+from rockarch.mdof import simulate
+from rockarch.motion.signals import pulse
+
+ORACLE = Path(__file__).with_name("lmgc90_oracle.py")
+RECT = [[0, 0], [0.4, 0], [0.4, 1], [0, 1]]
+
+
+def _quads_of_bridge(arch, n, pier_height, pier_width):
+    b = bd.bridge(arch, n, pier_height=pier_height, pier_width=pier_width)
+    v = voussoirs(arch, n)
+    piers = [np.asarray(p).tolist() for p in b.polygons if len(p) <= 6]
+    ip, ep = v.intrados, v.extrados
+    off = np.asarray(b.polygons[len(piers)][0]) - ip[0]  # where bridge() put the arch
+    quads = []
+    for i in range(n):
+        q = np.array([ip[i], ip[i + 1], ep[i + 1], ep[i]]) + off
+        quads.append(q.tolist())
+    return piers + quads
+
+
+def cases(quick: bool) -> list[tuple[str, list, list, float]]:
+    """(name, polygons, supports, mu)."""
+    out = [("block 0.4 x 1, mu 0.6", [RECT], [], 0.6),
+           ("block 0.4 x 1, mu 0.3 (slides)", [RECT], [], 0.3),
+           ("stack of 3 (0.6/0.45/0.3 x 0.5), mu 0.6",
+            [[[-0.3, 0], [0.3, 0], [0.3, 0.5], [-0.3, 0.5]],
+             [[-0.225, 0.5], [0.225, 0.5], [0.225, 1.0], [-0.225, 1.0]],
+             [[-0.15, 1.0], [0.15, 1.0], [0.15, 1.5], [-0.15, 1.5]]], [], 0.6)]
+    beside = [[[-0.4, 0], [0, 0], [0, 0.5], [-0.4, 0.5]]]
+    out += [(f"block beside a support, mu {mu:g}", [RECT], beside, mu)
+            for mu in (0.5, 2.0, 10.0)]
+    wall = [np.asarray(p).tolist() for p in bd.wall(4, 3, 0.4, 0.2).polygons]
+    out += [(f"wall 4 x 3, mu {mu:g}", wall, [], mu) for mu in (0.6, 2.0, 10.0)]
+    if not quick:
+        out.append(("arch N=10 on 3 x 1.5 m piers (quads), mu 0.6",
+                    _quads_of_bridge(catenary(10.0, 3.0, 0.25), 10, 3.0, 1.5), [], 0.6))
+    return out
+
+
+def _run(python: str, case: dict) -> dict:
+    with tempfile.TemporaryDirectory() as tmp:
+        cin, cout = Path(tmp) / "case.json", Path(tmp) / "out.json"
+        cin.write_text(json.dumps(case))
+        subprocess.run([python, str(ORACLE), str(cin), str(cout)], check=True, cwd=tmp,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return json.loads(cout.read_text())
+
+
+def stands(python: str, polys, supports, mu: float, lam: float) -> bool:
+    """LMGC90: the assembly tilted by atan(lam) stands (centroids move < 1 mm in 1.5 s)."""
+    out = _run(python, {"polygons": polys, "supports": supports, "mu": mu, "dt": 1e-3,
+                        "duration": 1.5, "tilt": lam, "stop": 2e-3})
+    return out["displacement"] < 1e-3
+
+
+def bisect(python: str, polys, supports, mu: float, guess: float, sign: int,
+           rel: float = 4e-3) -> tuple[float, float, int]:
+    """Bracket [lo, hi] of LMGC90's collapse multiplier (lo stands, hi does not)."""
+    lo, hi, runs = 0.8 * guess, 1.25 * guess, 0
+    while not stands(python, polys, supports, mu, sign * lo):
+        lo, runs = lo * 0.8, runs + 1
+    while stands(python, polys, supports, mu, sign * hi):
+        hi, runs = hi * 1.25, runs + 1
+    runs += 2
+    while hi - lo > rel * lo:
+        mid = 0.5 * (lo + hi)
+        runs += 1
+        if stands(python, polys, supports, mu, sign * mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi, runs
+
+
+def time_history(python: str) -> None:
+    """A 0.4 x 1 m block (mu 0.6) under a one-cycle sine pulse of 1.5 B/H·g, T = 0.5 s."""
+    a = bd.from_polygons([RECT], mu=0.6)
+    for ratio in (1.5, 3.0):
+        gm = pulse("sine", period=0.5, ap=ratio * a.ap_min, cycles=1)
+        r = simulate(a, gm, t_free=1.5)
+        th = np.abs(r.q[:, 0, 2]).max()
+        t = np.asarray(gm.t, float)
+        acc = np.asarray(gm.a, float)
+        v = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * np.diff(t))])
+        t_all = np.concatenate([t, [t[-1] + 1.5]])
+        v_all = np.concatenate([v, [v[-1]]])
+        out = _run(python, {"polygons": [RECT], "supports": [], "mu": 0.6, "dt": 1e-3,
+                            "duration": float(t_all[-1]), "record": 10,
+                            "ground": {"t": t_all.tolist(), "v": v_all.tolist()}})
+        alpha = math.atan(0.4)
+        lm_over = out["max_rotation"] > 2 * alpha
+        print(f"time history: block 0.4 x 1, sine T = 0.5 s, 1 cycle, {ratio:g} B/H g: "
+              f"rockarch max |theta| = {min(th, 9.99):.4f} rad, "
+              f"{'overturns' if r.overturned else 'stands'}; LMGC90 max |theta| = "
+              f"{min(out['max_rotation'], 9.99):.4f} rad, "
+              f"{'overturns' if lm_over else 'stands'} (alpha = {alpha:.4f} rad)",
+              flush=True)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--python", default=".venv-lmgc90/bin/python",
+                    help="the interpreter with compas-lmgc90")
+    ap.add_argument("--quick", action="store_true", help="small structures only")
+    args = ap.parse_args()
+    if "/" in args.python:  # the runs start in temporary folders
+        args.python = str(Path(args.python).absolute())
+    check = subprocess.run([args.python, "-c", "import compas_lmgc90.solver"],
+                           capture_output=True)
+    if check.returncode != 0:
+        print(f"lmgc90: {args.python} cannot import compas_lmgc90; skipped "
+              "(make validate installs it)")
+        return
+    for name, polys, supports, mu in cases(args.quick):
+        t0 = time.perf_counter()
+        a = bd.from_polygons(polys, supports=supports, mu=mu)
+        lam, sign = a.ap_min / a.g, int(a.info["collapse_direction"])
+        lo, hi, runs = bisect(args.python, polys, supports, mu, lam, sign)
+        mid = 0.5 * (lo + hi)
+        print(f"{name}: rockarch {lam:.4f} g, LMGC90 {lo:.4f}..{hi:.4f} g "
+              f"({100 * (mid / lam - 1):+.1f} %; {runs} runs, "
+              f"{time.perf_counter() - t0:.0f} s)", flush=True)
+    time_history(args.python)
+    sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
