@@ -119,7 +119,7 @@ def graphs(rec) -> None:
         wall = time.perf_counter() - t0
         us = 1e6 * wall / r.steps
         pm = pymunk_us_per_step(a)
-        solver = "banded" if graph_model(a).banded else "rest + Gauss–Seidel"
+        solver = f"Newton, band {graph_model(a).kbody}"
         print(f"| {name} | {a.n_blocks} | {a.n_joints} | {solver} | {seconds:g} | {wall:.2f} "
               f"| {r.steps} "
               f"| {us:.0f} | {us / a.n_blocks:.1f} | {pm:.0f} | {pm / a.n_blocks:.1f} | "

@@ -2,15 +2,21 @@
 
 The joints of an assembly are the faces that touch as built (docs/theory.md §10). A block
 that falls off a wall, tips off a pedestal or topples against its neighbour touches faces
-that were apart: every step, any corner of a block that comes within a margin of a face of
-another block, of a support or of the ground becomes a *point contact* (one normal and one
-tangential row, Coulomb's cone on the corner, docs/theory.md Eq. (9.9)); a contact whose
-corner moves away is dropped the next step. Broad phase: the blocks' bounding boxes, sorted
-by their left edge and swept; narrow phase: for convex polygons P and Q, a corner v of Q is
-in contact with the edge of P of greatest signed distance s_e(v) = n_e·(v − p_e) (the
-separating axis of least penetration) when that distance is within the margin. A corner and
-a face that form a joint as built (the corner lay on the joint's line) are the joint's: they
-are never a point contact, and neither is a corner whose nearest face is such a joint face.
+that were apart: every few steps, any corner of a block that comes within a margin of a
+face of another block, of a support or of the ground becomes a *point contact* (one normal
+and one tangential row, Coulomb's cone on the corner, docs/theory.md Eq. (9.10)); a contact
+whose corner moves away is dropped at the next search.
+
+Broad phase: the outlines' bounding boxes, sorted by their left edges (insertion sort from
+the last order: linear while the blocks move little) and swept. Narrow phase, for two convex
+outlines P and Q that share no joint in use: the separating axis of least penetration — the
+edge e of either outline with the greatest min over the other's corners v of n_e·(v − p_e) —
+is the *reference face*; the other outline's corners within the margin of it, and over it,
+are the contacts (one face per pair, as Box2D's manifolds: a corner meeting a corner gets one
+normal, not two). Two blocks joined by a joint in use (one that has not handed its blocks
+over, :func:`rockarch.mdof.graph_stepper.hand_over`) touch through that joint only; so does
+a block and the ground it stands on. Pairs are named by ids: a block's index, nb + p for
+support polygon p, nb + npoly for the ground plane y = 0.
 """
 
 from __future__ import annotations
@@ -79,64 +85,78 @@ def boxes(pptr, pbody, pv, pn, x, y, cs, sn, wx, wy, wn, box):
 
 
 @nb.njit(cache=True, inline="always")
-def _excluded(excl, key):
-    i = np.searchsorted(excl, key)
-    return i < excl.shape[0] and excl[i] == key
+def pair_key(i, j, nid):
+    """Key of the unordered pair of ids i, j (ids < nid)."""
+    return min(i, j) * nid + max(i, j)
 
 
 @nb.njit(cache=True)
-def _corners_on(pa, pb, pptr, wx, wy, wn, excl, nv, margin, tie, out, n, cap):
-    """Corners of polygon ``pb`` within ``margin`` of polygon ``pa`` (face owner): appended to
-    ``out`` as (edge id, vertex id) rows from row n. Returns the new count (capped)."""
+def joined(i, j, nid, pkeys, pptr, pjoint, jon):
+    """True if ids i and j share a joint in use."""
+    key = pair_key(i, j, nid)
+    q = np.searchsorted(pkeys, key)
+    if q < pkeys.shape[0] and pkeys[q] == key:
+        for t in range(pptr[q], pptr[q + 1]):
+            if jon[pjoint[t]]:
+                return True
+    return False
+
+
+@nb.njit(cache=True, inline="always")
+def _separation(pa, pb, pptr, wx, wy, wn):
+    """Greatest over the edges e of polygon pa of the least n_e·(v − p_e) over the corners v
+    of polygon pb, and that edge."""
+    best = -math.inf
+    be = -1
+    for a0 in range(pptr[pa], pptr[pa + 1]):
+        worst = math.inf
+        for v in range(pptr[pb], pptr[pb + 1]):
+            s = wn[a0, 0] * (wx[v] - wx[a0]) + wn[a0, 1] * (wy[v] - wy[a0])
+            worst = min(worst, s)
+        if worst > best:
+            best = worst
+            be = a0
+    return best, be
+
+
+@nb.njit(cache=True)
+def _manifold(pa, pb, e, pptr, wx, wy, wn, margin, out, n, cap):
+    """Corners of polygon pb within ``margin`` of reference edge e of polygon pa and over it
+    (their projection within the edge, the margin either side): rows (e, corner) of
+    ``out`` from row n. Returns the new count (counted beyond ``cap``, not stored)."""
     i0 = pptr[pa]
-    i1 = pptr[pa + 1]
+    m = pptr[pa + 1] - i0
+    a1 = i0 + (e - i0 + 1) % m
+    tx = wx[a1] - wx[e]
+    ty = wy[a1] - wy[e]
+    ln = math.sqrt(tx * tx + ty * ty)
+    tx /= ln
+    ty /= ln
     for v in range(pptr[pb], pptr[pb + 1]):
-        vx = wx[v]
-        vy = wy[v]
-        best = -math.inf
-        be = -1
-        for a0 in range(i0, i1):
-            s = wn[a0, 0] * (vx - wx[a0]) + wn[a0, 1] * (vy - wy[a0])
-            if s > margin:
-                be = -1
-                break
-            if s > best:
-                best = s
-                be = a0
-        if be < 0:
-            continue
-        # the joint's face wins a tie (a corner shared by a joint's face and another face)
-        key0 = v * (nv + 1)
-        joint = False
-        for a0 in range(i0, i1):
-            s = wn[a0, 0] * (vx - wx[a0]) + wn[a0, 1] * (vy - wy[a0])
-            if s >= best - tie and _excluded(excl, key0 + a0):
-                joint = True
-                break
-        if joint:
-            continue
-        if n < cap:
-            out[n, 0] = be
-            out[n, 1] = v
+        dx = wx[v] - wx[e]
+        dy = wy[v] - wy[e]
+        s = wn[e, 0] * dx + wn[e, 1] * dy
+        u = tx * dx + ty * dy
+        if s <= margin and -margin <= u <= ln + margin:
+            if n < cap:
+                out[n, 0] = e
+                out[n, 1] = v
             n += 1
-        else:
-            n += 1  # counted: the caller widens its room
     return n
 
 
 @nb.njit(cache=True)
-def detect(pptr, pbody, pv, pn, x, y, cs, sn, excl, margin, tie, wx, wy, wn, box, order,
-           found):
-    """Every (face, corner) pair within ``margin`` (module docstring): rows of ``found``
-    (edge id: the global index of the edge's first vertex, or nv for the ground plane y = 0;
-    vertex id). A joint's face within ``tie`` (the contact tolerance) of the nearest face
-    wins: corners shared by a joint's face and another face of the block (four blocks
-    meeting in a running-bond wall, a voussoir's corner) stay the joint's. ``order`` keeps
-    the polygons sorted by the left edge of their boxes from call to call (insertion sort:
-    linear while the blocks move little). Returns the number found (more than
+def detect(pptr, pbody, pv, pn, x, y, cs, sn, pkeys, pptr_j, pjoint, jon, margin, ground_y,
+           wx, wy, wn, box, order, found):
+    """Every (reference face, corner) pair within ``margin`` (module docstring): rows of
+    ``found`` (edge id: the global index of the edge's first vertex, or nv for the ground
+    plane y = ``ground_y``; vertex id). ``pkeys``/``pptr_j``/``pjoint``: the joints of every pair of
+    ids (sorted keys, CSR), ``jon`` the joints in use. Returns the number found (more than
     found.shape[0]: that many did not fit)."""
     npoly = pbody.shape[0]
     nv = pv.shape[0]
+    nbod = x.shape[0]
+    nid = nbod + npoly + 1
     cap = found.shape[0]
     boxes(pptr, pbody, pv, pn, x, y, cs, sn, wx, wy, wn, box)
     for i in range(1, npoly):
@@ -153,18 +173,32 @@ def detect(pptr, pbody, pv, pn, x, y, cs, sn, excl, margin, tie, wx, wy, wn, box
             q = order[jj]
             if box[q, 0] > box[p, 1] + margin:
                 break
-            if pbody[p] == pbody[q]:
+            bp = pbody[p]
+            bq = pbody[q]
+            if bp == bq:
                 continue  # one body, or two supports
             if box[q, 2] > box[p, 3] + margin or box[p, 2] > box[q, 3] + margin:
                 continue
-            n = _corners_on(p, q, pptr, wx, wy, wn, excl, nv, margin, tie, found, n, cap)
-            n = _corners_on(q, p, pptr, wx, wy, wn, excl, nv, margin, tie, found, n, cap)
+            ip = bp if bp >= 0 else nbod + p
+            iq = bq if bq >= 0 else nbod + q
+            if joined(ip, iq, nid, pkeys, pptr_j, pjoint, jon):
+                continue
+            sp, ep = _separation(p, q, pptr, wx, wy, wn)
+            sq, eq = _separation(q, p, pptr, wx, wy, wn)
+            if max(sp, sq) > margin:
+                continue
+            if sp >= sq:
+                n = _manifold(p, q, ep, pptr, wx, wy, wn, margin, found, n, cap)
+            else:
+                n = _manifold(q, p, eq, pptr, wx, wy, wn, margin, found, n, cap)
     # the ground plane y = 0 (normal +y) against every block's corners
     for p in range(npoly):
-        if pbody[p] < 0 or box[p, 2] > margin:
+        j = pbody[p]
+        if j < 0 or box[p, 2] > ground_y + margin or joined(j, nid - 1, nid, pkeys, pptr_j,
+                                                             pjoint, jon):
             continue
         for v in range(pptr[p], pptr[p + 1]):
-            if wy[v] <= margin and not _excluded(excl, v * (nv + 1) + nv):
+            if wy[v] <= ground_y + margin:
                 if n < cap:
                     found[n, 0] = nv
                     found[n, 1] = v

@@ -8,7 +8,7 @@ joint, |Λ_t| ≤ μ·(Λ[tn0] + Λ[tn1]), sliding against their velocity, with 
 while they stick (u = J·v⁺ + b, v⁺ = v_free + M⁻¹·Jᵀ·Λ).
 
 It is solved in the bodies' velocities by a semismooth Newton (active-set) method on the
-rows' states (docs/theory.md Eq. (9.10)): a normal row is closed (Λ_n = −u_n/ε_n) or open
+rows' states (docs/theory.md Eqs. (9.7)–(9.8)): a normal row is closed (Λ_n = −u_n/ε_n) or open
 (0); a tangential row sticks (Λ_t = −u_t/ε_t) or slides (Λ_t = ±μ·ΣΛ_n: the bound enters the
 linear system). Eliminating the impulses leaves one linear system in the 3 velocities of
 every body,
@@ -21,7 +21,7 @@ unknowns, half-bandwidth 35, where the contact-space W has 1740 rows and is sing
 wall is hyperstatic). H is not symmetric where rows slide (non-associative friction): one
 banded LU per iteration, kept from step to step while the states do not change (refined
 against the moving Jacobian). Where hundreds of joints open and close at once the plain
-method need not settle; it is then globalised by the proximal point method (Eq. (9.11),
+method need not settle; it is then globalised by the proximal point method (Eq. (9.9),
 :func:`solve`). Every step ends with the contact law met within (tol_u, tol_l) or counts as
 failed.
 """
@@ -514,7 +514,7 @@ def _wrr(r, rba, rbb, ja, jb, sw):
 def semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol_u, tol_l,
                lref, max_it, key):
     """The semismooth Newton method on the rows' states (module docstring; docs/theory.md
-    Eq. (9.10)) with the rows' 1/ε in sw.ie: states change where violated by more than
+    Eq. (9.8)) with the rows' 1/ε in sw.ie: states change where violated by more than
     (tol_u, tol_l) (a closed row in tension, an open one that moves in, a sticking row beyond
     its cone, a sliding one that moves with its friction force); it stops when none changes.
     ``sw.st`` and ``lam`` hold the warm start (the last step's states and impulses); ``key``
@@ -563,7 +563,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
 
     First the plain semismooth Newton method (``SSN_FIRST`` iterations). Where it does not
     settle (hundreds of joints opening and closing at once), the proximal point method
-    (docs/theory.md Eq. (9.11); Siconos' and LMGC90's PROX): the problems with ε' = ε + ρ
+    (docs/theory.md Eq. (9.9); Siconos' and LMGC90's PROX): the problems with ε' = ε + ρ
     and b' = b − ρ·Λ_k, whose solution is the impulse closest to the last one Λ_k in the
     weight ρ. For ρ of the order of W's diagonal they are diagonally dominant and settle in a
     few iterations; Λ_k ← Λ, and ρ falls by ``PROX_DROP`` after a proximal step that settled

@@ -127,7 +127,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     by ``scale`` (lengths) on amp·a(t) [m/s²]; ``through``: go on after a collapse (until
     rest or t_end) instead of stopping there. Returns (status, t_collapse,
     max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max,
-    most point contacts at once)."""
+    most new contacts carrying an impulse at once)."""
     mass = m.mass
     g = m.g
     nbod = mass.shape[0]
@@ -185,7 +185,11 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         if its < 0 or ws.cnt[1] > 0:  # not solved, or more new contacts than room
             fails += 1
             ws.cnt[1] = 0
-        points_max = max(points_max, ws.cnt[0])
+        n_touch = 0
+        for i in range(ws.cnt[0]):
+            if ws.lam[n + 2 * i] > 0.0:
+                n_touch += 1
+        points_max = max(points_max, n_touch)
         n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
         kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)

@@ -10,7 +10,7 @@ the no-slip constraint (μ = ∞, the chain model). After the joints, the point 
 corners that reached a face they did not touch as built (:mod:`rockarch.mdof.collision`):
 one normal and one tangential row each. Contact solve: exact, the Newton method in the
 bodies' velocities iterated on the friction bounds (:mod:`rockarch.mdof.contact_solver`,
-docs/theory.md Eqs. (9.8)–(9.10)). Positions stabilised by one Gauss–Seidel sweep per step
+docs/theory.md Eqs. (9.7)–(9.9)). Positions stabilised by one Gauss–Seidel sweep per step
 of the chain stepper's projection (closed contacts that carried an impulse close, sticking
 joints keep their slip; velocities untouched, never adding energy). Collapse, impacts and
 records in :mod:`rockarch.mdof.graph_run`.
@@ -172,6 +172,38 @@ def _slid_joints(nj, ba, bb, x, y, cs, sn, ra, rb, fa, fb, ftol, n0, mu, gap, ja
     return n_off
 
 
+#: A joint's corner that projects beyond the other block's face by more than this fraction
+#: of the face is off it (the faces turned apart); generous, as it only has to catch blocks
+#: that tipped over an edge (a sliding joint's corners follow the faces' overlap, §9).
+OFF_FACE = 0.05
+
+
+@nb.njit(cache=True, inline="always")
+def _outside(ex0, ey0, ex1, ey1, px, py):
+    """True if (px, py) projects beyond the segment from (ex1, ey1) to (ex0, ey0) by more
+    than ``OFF_FACE`` of its length."""
+    ux = ex0 - ex1
+    uy = ey0 - ey1
+    ll = ux * ux + uy * uy
+    s = (ux * (px - ex1) + uy * (py - ey1)) / ll
+    return s < -OFF_FACE or s > 1.0 + OFF_FACE
+
+
+@nb.njit(cache=True)
+def _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
+    """True if a corner of joint k (b's point pb, a's point pa) no longer lies over the
+    other block's face: pb beyond the ends of a's face or pa beyond b's (the faces have
+    turned apart: a block tipped over an edge). A sliding joint's corners are the ends of
+    the faces' overlap (:func:`_sliding_joint`), which never are."""
+    a0x, a0y, _, _ = _point(a, x, y, cs, sn, fa[k, 0, 0], fa[k, 0, 1])
+    a1x, a1y, _, _ = _point(a, x, y, cs, sn, fa[k, 1, 0], fa[k, 1, 1])
+    if _outside(a0x, a0y, a1x, a1y, pbx, pby):
+        return True
+    b0x, b0y, _, _ = _point(b, x, y, cs, sn, fb[k, 0, 0], fb[k, 0, 1])
+    b1x, b1y, _, _ = _point(b, x, y, cs, sn, fb[k, 1, 0], fb[k, 1, 1])
+    return _outside(b0x, b0y, b1x, b1y, pax, pay)
+
+
 @nb.njit(cache=True)
 def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
@@ -199,6 +231,8 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
             dx = pbx - pax
             dy = pby - pay
             gap[k, cc] = nx * dx + ny * dy
+            if _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
+                gap[k, cc] = OFF_GAP  # the faces have turned apart here (a block tipped over)
             if cc == 1 and gap[k, 1] < gap[k, 0]:
                 best = 1
             _rows(ja, jb, 3 * k + cc, a, nx, ny, pbx, pby, obx, oby, x, y)
@@ -294,7 +328,7 @@ def point_rows(m, ws, x, y, cs, sn, i):
     configuration (x, y, cs, sn): normal row 3·nj + 2i, tangential row 3·nj + 2i + 1, the
     face's normal attached to its body a (the ground's: +y), the corner on body b; arms
     from both centroids to the corner (the exact gradient of the gap, docs/theory.md
-    Eq. (9.9))."""
+    Eq. (9.10))."""
     nv = m.pv.shape[0]
     v = ws.cvert[i]
     e = ws.cedge[i]
@@ -304,7 +338,7 @@ def point_rows(m, ws, x, y, cs, sn, i):
     if e == nv:
         a = -1
         nx, ny = 0.0, 1.0
-        gap = pby
+        gap = pby - ws.gy[0]
     else:
         a = m.pbody[m.vpoly[e]]
         e1 = e + 1 if e + 1 < m.pptr[m.vpoly[e] + 1] else m.pptr[m.vpoly[e]]
@@ -335,8 +369,35 @@ def point_rows(m, ws, x, y, cs, sn, i):
     ws.cgap[i] = gap
 
 
+#: A joint whose two blocks have turned apart by more than this [rad] hands their contact
+#: over to the point contacts: its corner rows assume a face lying on the other block's face
+#: (its normal), which a block that tipped over an edge no longer does.
+TURN_OFF = 0.25 * math.pi
+
+
 @nb.njit(cache=True)
-def find_contacts(m, ws, x, y, ph, margin, tie):
+def hand_over(m, ph, gap, jon):
+    """Joints in use (``jon``): those whose blocks have not turned apart by more than
+    ``TURN_OFF``; the others are open (their corners' gaps ``OFF_GAP``) and their corners
+    and faces become point contacts (:mod:`rockarch.mdof.collision`). Returns whether a
+    joint changed hands this step."""
+    changed = False
+    for k in range(m.n0.shape[0]):
+        a = m.ba[k]
+        b = m.bb[k]
+        rel = (ph[b] if b >= 0 else 0.0) - (ph[a] if a >= 0 else 0.0)
+        on = abs(rel) <= TURN_OFF
+        if on != jon[k]:
+            changed = True
+            jon[k] = on
+        if not on:
+            gap[k, 0] = OFF_GAP
+            gap[k, 1] = OFF_GAP
+    return changed
+
+
+@nb.njit(cache=True)
+def find_contacts(m, ws, x, y, ph, margin):
     """The point contacts of this configuration (:func:`rockarch.mdof.collision.detect`)
     with their rows; each keeps its last impulses if it was a contact the step before (the
     warm start). ``margin`` < 0: the contacts of the last search, at this configuration.
@@ -348,8 +409,8 @@ def find_contacts(m, ws, x, y, ph, margin, tie):
         for i in range(ws.cnt[0]):
             point_rows(m, ws, x, y, cs, sn, i)
         return 0
-    n = detect(m.pptr, m.pbody, ws.pv, ws.pn, x, y, cs, sn, m.excl, margin, tie, ws.wx,
-               ws.wy, ws.wn, ws.box, ws.order, ws.found)
+    n = detect(m.pptr, m.pbody, ws.pv, ws.pn, x, y, cs, sn, m.pkeys, m.pptr_j, m.pjoint,
+               ws.jon, margin, ws.gy[0], ws.wx, ws.wy, ws.wn, ws.box, ws.order, ws.found)
     if n > ws.found.shape[0]:
         ws.cnt[1] = n  # more than there is room for: the run widens it
         n = ws.found.shape[0]
@@ -408,7 +469,10 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps_n, eps_t, tol_u, tol_l, 
     nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
              ws.ja, ws.jb)
-    find_contacts(m, ws, x, y, ph, margin, gtol)
+    handed = hand_over(m, ph, ws.gap, ws.jon)
+    if handed and margin < 0.0:
+        margin = gtol  # a joint just handed its blocks over: search now
+    find_contacts(m, ws, x, y, ph, margin)
     nrows = 3 * nj + 2 * ws.cnt[0]
     for k in range(nj):
         for c in range(3):
@@ -551,6 +615,7 @@ class Work(NamedTuple):
     order: np.ndarray  # (npoly,)
     found: np.ndarray  # (cap, 3)
     cnt: np.ndarray  # [point contacts in use, contacts found beyond the room (0: none)]
+    jon: np.ndarray  # (nj,) joints in use (:func:`hand_over`)
     cedge: np.ndarray  # (cap,) face (edge id) and corner (vertex id) of every point contact
     cvert: np.ndarray
     ckey: np.ndarray
@@ -559,6 +624,7 @@ class Work(NamedTuple):
     olam: np.ndarray
     ost: np.ndarray
     lref: np.ndarray  # [thinnest joint, scaled]
+    gy: np.ndarray  # [height of the ground plane, scaled]
     sw: SolverWork
 
 
@@ -598,8 +664,10 @@ def make_work(m, scale, cap):
                 tmu, pv, np.zeros(nv), np.zeros(nv), local_normals(m.pptr, pv),
                 np.zeros((nv, 2)), np.zeros((npoly, 4)),
                 np.arange(npoly), np.zeros((cap, 2), dtype=np.int64),
-                np.zeros(2, dtype=np.int64), np.zeros(cap, dtype=np.int64),
+                np.zeros(2, dtype=np.int64), np.ones(nj, dtype=np.bool_),
+                np.zeros(cap, dtype=np.int64),
                 np.zeros(cap, dtype=np.int64), np.zeros(cap, dtype=np.int64), np.zeros(cap),
                 np.zeros(cap, dtype=np.int64), np.zeros((cap, 2)),
                 np.zeros((cap, 2), dtype=np.int8), np.array([m.thick_min * scale]),
+                np.array([m.ground_y * scale]),
                 make_solver_work(nbod, n, m.bpos, m.mass, inertia, m.kd_cap))

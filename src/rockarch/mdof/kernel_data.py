@@ -78,8 +78,11 @@ class GraphModel(NamedTuple):
     pptr: np.ndarray  # (npoly + 1,) polygon p has the vertices pptr[p]:pptr[p + 1]
     pbody: np.ndarray  # (npoly,) body of every polygon (-1: a support)
     vpoly: np.ndarray  # (nv,) polygon of every vertex
-    excl: np.ndarray  # sorted keys vertex·(nv + 1) + edge of the corners that touch a face
-    #                   as built (the joints'; edge nv: the ground)
+    pkeys: np.ndarray  # sorted keys of the pairs of ids (a block, nb + a support polygon,
+    #                    nb + npoly the ground) that share joints ...
+    pptr_j: np.ndarray  # ... their joints pjoint[pptr_j[q]:pptr_j[q + 1]]
+    pjoint: np.ndarray
+    ground_y: float  # height of the ground plane of new contacts
     mu_contact: float  # friction coefficient of new contacts
     contact_cap: int  # most point contacts at once
     thick_min: float
@@ -182,38 +185,44 @@ def _outlines(assembly: Assembly):
     size = float(np.ptp(np.concatenate(world), axis=0).max())
     tol = 1e-6 * size
     ptr = np.cumsum([0] + [len(p) for p in world])
-    nv = int(ptr[-1])
     allv = np.concatenate(world)
     vpoly = np.repeat(np.arange(len(world)), [len(p) for p in world])
     pbody = np.array([b for b, _ in polys], dtype=np.int64)
-    # a corner of block j lying, as built, on the line of a face of block i where i and j
-    # have a joint along that line is the joint's (the joint's overlap follows it when it
-    # slides); so is a corner on the ground
+    # the joints of every pair of ids (a block's index, nb + p for support polygon p, the
+    # ground plane nb + npoly): two blocks joined by a joint in use touch through it only
+    nb_ = assembly.n_blocks
+    npoly = len(polys)
+    nid = nb_ + npoly + 1
     corners = np.asarray(assembly.corners, dtype=float)
     normal = np.asarray(assembly.normal, dtype=float)
-    lines = [(min(int(a), int(b)), max(int(a), int(b)), c[0], nrm) for a, b, c, nrm in
-             zip(assembly.body_a, assembly.body_b, corners, normal, strict=True)]
-    keys = []
-    for p, (bp, pw) in enumerate(polys):
-        k = len(pw)
-        for e in range(k):
-            p0, p1 = pw[e], pw[(e + 1) % k]
-            t = (p1 - p0) / np.hypot(*(p1 - p0))
-            n = np.array([t[1], -t[0]])
-            for lo_, hi_, c0, nrm in lines:
-                if bp not in (lo_, hi_) or abs(abs(n @ nrm) - 1.0) > 1e-9 \
-                        or abs((p0 - c0) @ nrm) > tol:
-                    continue
-                other = hi_ if bp == lo_ else lo_
-                on = (pbody[vpoly] == other) & (np.abs((allv - p0) @ n) <= tol)
-                keys += [int(v) * (nv + 1) + int(ptr[p] + e) for v in np.flatnonzero(on)]
-    # a corner on the ground as built is a joint's; one below it (an arch's springing
-    # voussoir, which stands on its abutment's inclined face) never meets the ground plane
-    on_ground = (allv[:, 1] <= tol) & (pbody[vpoly] >= 0)
-    keys += [int(v) * (nv + 1) + nv for v in np.flatnonzero(on_ground)]
+    pairs: dict[int, list[int]] = {}
+    for k, (a, b) in enumerate(zip(assembly.body_a, assembly.body_b, strict=True)):
+        a, b = int(a), int(b)
+        if a >= 0 and b >= 0:
+            ids = (a, b)
+        else:
+            body = b if a < 0 else a
+            c0, c1 = corners[k]
+            if max(abs(c0[1]), abs(c1[1])) <= tol and abs(abs(normal[k, 1]) - 1.0) <= 1e-9:
+                other = nid - 1
+            else:
+                other = next((nb_ + p for p, (bp, pw) in enumerate(polys) if bp < 0 and any(
+                    max(abs((c0 - pw[e]) @ normal[k]), abs((c1 - pw[e]) @ normal[k])) <= tol
+                    for e in range(len(pw)))), -1)
+            if other < 0:
+                continue  # an abutment without an outline: nothing to collide with
+            ids = (body, other)
+        pairs.setdefault(min(ids) * nid + max(ids), []).append(k)
+    keys = np.array(sorted(pairs), dtype=np.int64)
+    pptr_j = np.cumsum([0] + [len(pairs[q]) for q in keys]).astype(np.int64)
+    pjoint = np.array([k for q in keys for k in pairs[q]], dtype=np.int64)
     rel = allv - np.where(pbody[vpoly][:, None] >= 0, cen[np.maximum(pbody[vpoly], 0)], 0.0)
+    # the ground plane: y = 0, or just below the lowest corner as built if that is lower (an
+    # arch springs from inclined abutments below its springing line: none touches the plane)
+    low = float(allv[pbody[vpoly] >= 0, 1].min())
+    ground_y = 0.0 if low >= -tol else low - 1e-3 * size
     return (_f(rel), np.asarray(ptr, dtype=np.int64), pbody, np.asarray(vpoly, dtype=np.int64),
-            np.unique(np.array(keys, dtype=np.int64)))
+            keys, pptr_j, pjoint, ground_y)
 
 
 def graph_model(assembly: Assembly) -> GraphModel:
@@ -235,7 +244,7 @@ def graph_model(assembly: Assembly) -> GraphModel:
     fa, fb = face_ends(assembly, ba, corners, normal), face_ends(assembly, bb, corners, normal)
     span = np.hypot(*(corners[:, 1] - corners[:, 0]).T)
     bpos, kbody = body_order(assembly)
-    pv, pptr, pbody, vpoly, excl = _outlines(assembly)
+    pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y = _outlines(assembly)
     mu = np.asarray(assembly.mu, dtype=float)
     return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb,
                       rel(ba, corners), rel(bb, corners), normal, _f(mu), rel(ba, fa),
@@ -244,6 +253,7 @@ def graph_model(assembly: Assembly) -> GraphModel:
                       np.array([i[1] for i in inc], dtype=np.int64),
                       np.array([i[2] for i in inc], dtype=np.int64),
                       bpos, kbody, min(3 * assembly.n_blocks - 1, max(2 * kbody, kbody + 30)),
-                      pv, pptr, pbody, vpoly, excl, float(mu.min()), 2 * pv.shape[0] + 16,
+                      pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y,
+                      float(mu.min()), 2 * pv.shape[0] + 16,
                       float(assembly.thickness.min()), float(assembly.delta_ref),
                       float(assembly.g))

@@ -4,7 +4,7 @@ Two steppers behind one API: a chain without friction (arch, column, block: join
 body k−1 and body k, every μ infinite) runs on :mod:`rockarch.mdof.chain_stepper` (exact
 banded active-set contact solve, O(N)); any other assembly (a general contact graph or any
 finite friction coefficient) on :mod:`rockarch.mdof.graph_run` (the exact Newton solve in
-the bodies' velocities with Coulomb's cones, docs/theory.md Eqs. (9.8)–(9.10), and new
+the bodies' velocities with Coulomb's cones, docs/theory.md Eqs. (9.7)–(9.9), and new
 contacts wherever a corner reaches a face, :mod:`rockarch.mdof.collision`).
 """
 
@@ -43,8 +43,8 @@ class MDOFResponse(Response):
     potential energy relative to the start (ground frame, per unit depth and density).
     ``max_slip`` is the largest tangential offset of the two sides of any joint in contact
     [m] (0 for the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding
-    at once, ``new_contacts_max`` the most point contacts at once (corners that reached a
-    face they did not touch as built, docs/theory.md Eq. (9.9)).
+    at once, ``new_contacts_max`` the most new contacts carrying an impulse at once (corners
+    pressing on a face they did not touch as built, docs/theory.md Eq. (9.10)).
     """
 
     assembly: Assembly
