@@ -3,7 +3,14 @@
 import numpy as np
 import pytest
 
-from rockarch.motion.records import G_STANDARD, el_centro, read_at2, read_record, read_two_column
+from rockarch.motion.records import (
+    G_STANDARD,
+    UnitsWarning,
+    el_centro,
+    read_at2,
+    read_record,
+    read_two_column,
+)
 
 NEW = """PEER NGA STRONG MOTION DATABASE RECORD
 Test event, 1/1/2000, Station, 90
@@ -49,7 +56,9 @@ def test_two_column_units_and_header(tmp_path):
     f = _write(tmp_path, "rec.txt", "time acc\n0.0 0.1\n0.01, 0.2\n0.02\t-0.3\n0.03 0.0\n")
     m = read_two_column(f, units="g")
     assert m.a[2] == pytest.approx(-0.3 * G_STANDARD)
-    assert read_record(f).a[2] == pytest.approx(-0.3)  # m/s2 by default
+    # m/s2 by default, with a warning: a peak of 0.3 is plausible in g too
+    with pytest.warns(UnitsWarning, match="plausible PGA in g"):
+        assert read_record(f).a[2] == pytest.approx(-0.3)
 
 
 @pytest.mark.parametrize(

@@ -25,8 +25,14 @@ from rockarch.rocking import kernels as _k
 _NO_TABLE = np.zeros((2, 3, 2))
 
 
+#: Largest slenderness of Housner's impact law [rad]: 1 − 1.5·sin²(alpha) = 0 at
+#: asin(sqrt(2/3)) ≈ 0.9553 (B/H = sqrt(2)); above it the law gives r < 0.
+HOUSNER_ALPHA_MAX = math.asin(math.sqrt(2.0 / 3.0))
+
+
 def housner_restitution(alpha: float) -> float:
-    """Housner's coefficient of restitution r = 1 − 1.5·sin²(alpha) (rectangular block)."""
+    """Housner's coefficient of restitution r = 1 − 1.5·sin²(alpha) (rectangular block);
+    negative above :data:`HOUSNER_ALPHA_MAX`, where callers refuse it."""
     return 1.0 - 1.5 * math.sin(alpha) ** 2
 
 
@@ -59,6 +65,12 @@ class RigidBlock:
         if self.restitution is not None:
             object.__setattr__(self, "restitution",
                                in_range("restitution", self.restitution, 0.0, 1.0))
+        elif self.alpha > HOUSNER_ALPHA_MAX:
+            raise ValueError(
+                f"Housner's restitution 1 - 1.5 sin²(alpha) is negative "
+                f"({housner_restitution(self.alpha):.4g}) for alpha = {self.alpha:g} rad > "
+                f"{HOUSNER_ALPHA_MAX:.4f} rad (B/H > 1.414): give the restitution "
+                "(--restitution R in [0, 1]; 0: the block stops at its first impact)")
 
     @classmethod
     def from_dimensions(cls, width: float, height: float, g: float = G,
@@ -186,6 +198,8 @@ def simulate_batch(block: RigidBlock, motion: GroundMotion, p, ratio, *,
     model, prm, tab, amin, level, e = block.kernel_args()
 
     def run(ps, rs):
+        if ps.size:  # the work of the longest run, before any (Eq. 8.5)
+            _k.check_steps(tk, t_free, float(np.max(ps)), h_factor)
         return _k.run_batch(tk, ak, rs * tan_a, model, ps * ps, ps, prm, tab, amin, level,
                             e, float(t_free), float(h_factor), float(eps_rest))
 
