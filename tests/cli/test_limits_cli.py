@@ -146,3 +146,16 @@ def test_largest_two_column_record_stays_under_1_gb(tmp_path):
     code, peak_kb = map(int, res.stdout.split()[-2:])
     assert code == 0, res.stderr
     assert peak_kb < 1_000_000, peak_kb  # kB (Linux)
+
+
+def test_progress_bars_only_on_a_terminal(capsys):
+    """A sweep's progress bar by default appears on a terminal only: a log file or a pipe
+    (here pytest's capture) gets no carriage-return bars."""
+    import rockarch as ra
+    from rockarch.spectra.oas import compute_oas
+
+    blk, sine = ra.system("block", alpha=0.1), ra.pulse("sine", period=1.0)
+    compute_oas(blk, sine, [1.0, 2.0], [1.0, 2.0, 3.0])
+    assert capsys.readouterr().err == ""
+    compute_oas(blk, sine, [1.0, 2.0], [1.0, 2.0, 3.0], progress=True)
+    assert "OAS block" in capsys.readouterr().err

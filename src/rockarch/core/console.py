@@ -33,3 +33,14 @@ def _show(message, category, filename, lineno, file=None, line=None) -> None:
 def one_line_warnings() -> None:
     """Print every warning of this process as one ``warning: ...`` line on stderr."""
     warnings.showwarning = _show
+
+
+def on_terminal(progress: bool | None) -> bool:
+    """Whether to show a progress bar: ``progress`` if given, else only when stderr is a
+    terminal (a log file or a pipe gets no carriage-return bars)."""
+    if progress is not None:
+        return bool(progress)
+    try:
+        return sys.stderr is not None and sys.stderr.isatty()
+    except (AttributeError, ValueError):  # a replaced or closed stderr
+        return False

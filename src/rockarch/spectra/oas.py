@@ -18,6 +18,7 @@ import xarray as xr
 from tqdm.auto import tqdm
 
 from rockarch.core import __version__, sweep
+from rockarch.core.console import on_terminal
 from rockarch.core.constants import OAS_TOL as TOL
 from rockarch.core.paths import atomic_write
 from rockarch.motion.signals import GroundMotion
@@ -48,7 +49,7 @@ def _grid(name: str, values) -> np.ndarray:
 
 
 def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float = TOL,
-                progress: bool = True, chunks: int = 32, executor=None,
+                progress: bool | None = None, chunks: int = 32, executor=None,
                 store=None) -> xr.Dataset:
     """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio`` (Sect. 1).
 
@@ -63,8 +64,9 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     tol : float
         Bisection tolerance of the boundary (ratio units); 0 disables the refinement and
         the boundary is the first overturning grid value.
-    progress : bool
-        Show a progress bar on stderr.
+    progress : bool or None
+        Show a progress bar on stderr (None: only if stderr is a terminal, so that a log
+        file gets no bar).
     chunks : int
         The grid is run in this many chunks of rows (p values); the bisection rounds are
         split the same way.
@@ -109,7 +111,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
 
     try:
         with tqdm(total=n_p * n_r + n_bisect * n_p, desc=f"OAS {system.name}", unit="sim",
-                  disable=not progress, leave=False) as bar:
+                  disable=not on_terminal(progress), leave=False) as bar:
             grid = [np.meshgrid(p[idx], ratio, indexing="ij") for idx in rows]
             for idx, (o, m) in zip(rows, run(grid), strict=True):
                 over[idx], resp[idx] = o, m
