@@ -48,7 +48,8 @@ def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
     The same computation as ``rockarch oas`` (which passes the same grids); see
     :func:`rockarch.spectra.oas.compute_oas` for the executor and store options.
     """
-    from rockarch.systems import check_motion, check_system, numbers
+    from rockarch.core.validate import numbers
+    from rockarch.systems import check_motion, check_system
 
     check_system(sys_)
     check_motion(motion)

@@ -15,6 +15,7 @@ structure, Eqs. 11.34–11.35).
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,6 +25,7 @@ from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
 from rockarch.core.constants import OAS_TOL, G
 from rockarch.core.validate import in_range, integer, positive
+from rockarch.motion.signals import GroundMotion
 from rockarch.risk import fragility as fr
 from rockarch.spectra import site as site_mod
 from rockarch.systems import check_system
@@ -175,6 +177,14 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     executor, store, progress : as in :func:`rockarch.spectra.oas.compute_oas`.
     """
     check_system(system, "system")
+    if site is not None and not isinstance(site, xr.Dataset):
+        raise TypeError(f"site must be a site OAS (xarray.Dataset of rockarch.spectra.site."
+                        f"load), got {type(site).__name__}")
+    if records is not None and (isinstance(records, (str, bytes, os.PathLike))
+                                or not all(isinstance(m, GroundMotion)
+                                           for m in getattr(records, "motions", records))):
+        raise TypeError("records must be a Suite (ra.read_suite) or a list of GroundMotion, "
+                        f"got {type(records).__name__}")
     if curve not in SYSTEM_CURVES:
         raise ValueError(f"the site curve of a structure's design must be one of "
                          f"{', '.join(SYSTEM_CURVES)}, got {curve!r}")

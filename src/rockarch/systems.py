@@ -31,7 +31,15 @@ from rockarch import mdof
 from rockarch.arch.geometry import make_arch
 from rockarch.core.constants import EPS_REST, GAP_TOL, MDOF_H_FACTOR, SDOF_H_FACTOR, T_FREE, G
 from rockarch.core.response import Batch, Response
-from rockarch.core.validate import in_range, integer, number, positive, ratio_value
+from rockarch.core.validate import (
+    in_range,
+    integer,
+    number,
+    numbers,
+    positive,
+    ratio_value,
+    show,
+)
 from rockarch.mdof.assembly import Assembly
 from rockarch.motion.signals import GroundMotion
 from rockarch.rocking import mechanism as mc
@@ -302,6 +310,9 @@ def _check_types(given: dict) -> None:
                             f"elliptical), got {type(v).__name__}")
         elif k == "abutments" and not isinstance(v, (bool, np.bool_)):
             raise TypeError(f"abutments must be True or False, got {type(v).__name__}")
+        elif k == "column" and isinstance(v, str):
+            raise TypeError("column must be a sequence of (width, height[, x_centre]) rows, "
+                            f"got str {v!r} (the CLI's --column text is parsed by it)")
         elif k in ("column", "wall", "block") and isinstance(v, (int, float, bool)):
             raise TypeError(f"{k} must be a sequence (or the CLI's comma-separated text), "
                             f"got {type(v).__name__} {v!r}")
@@ -509,7 +520,8 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
         if wall is not None:
             rows, cols = _pair("--wall", "ROWS,COLUMNS", wall)
             if not all(float(v).is_integer() for v in (rows, cols)):
-                raise ValueError(f"--wall needs whole numbers of rows and columns, got {wall!r}")
+                raise ValueError(f"--wall needs whole numbers of rows and columns, got "
+                                 f"{show(wall)}")
             rows, cols = int(rows), int(cols)
             return builders.wall(rows, cols, bw, bh, mu=mu, g=g)
         _need("mdof", bay=bay, lintel=lintel)
@@ -539,21 +551,6 @@ def batch(sys_, motion: GroundMotion, p, ratio) -> Batch:
     check_motion(motion)
     return sys_.batch(motion, numbers("p", p), numbers("ratio", ratio))
 
-
-def numbers(name: str, values) -> np.ndarray:
-    """``values`` (a number or an array of them) as a float array; TypeError naming
-    ``name`` for None, text or booleans."""
-    if values is None or isinstance(values, (str, bytes, bool, np.bool_)):
-        raise TypeError(f"{name} must be a number or an array of numbers, got "
-                        f"{type(values).__name__}")
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a number or an array of numbers, got "
-                        f"{type(values).__name__}") from None
-    if np.asarray(values).dtype.kind == "b":
-        raise TypeError(f"{name} must hold numbers, not booleans")
-    return arr
 
 
 __all__ = ["KINDS", "BlockSystem", "MDOFSystem", "MechanismSystem", "batch", "check_blocks",

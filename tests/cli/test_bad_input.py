@@ -414,6 +414,9 @@ def _issue22_cases(add) -> None:
     add("block-g=1e308", _sub(block, g="1e308"))
     add("block-ratio=1e300", _sub(block, ratio="1e300"))
     add("oas-ratio-max=1e300", _sub(OAS, ratio_min="0", ratio_max="1e300"))
+    add("oas-tol=1e-300", _sub(OAS, tol="1e-300"))  # ~1000 bisection rounds: a hang
+    add("mdof-column-empty-block", mdof_col + ["--column", "0.4,1;;0.3,0.5"])
+    add("mdof-column=0.3-plain-numbers", mdof_col + ["--column", "0.3"])
     # late checks: refused before the IDA
     des = ["design", "--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness",
            "0.35", "--records", REC]

@@ -242,9 +242,10 @@ NO_STORE_OPT = typer.Option(False, "--no-store", help="Keep no store (always rec
 
 def column_blocks(column: str) -> list[np.ndarray]:
     """--column 'B,H;B,H' as a list of (B, H[, x]) rows."""
-    rows = [r for r in column.split(";") if r.strip()]
-    if not rows:
-        raise ValueError("--column is empty: give 'B,H;B,H' (bottom to top, metres)")
+    rows = column.strip().rstrip(";").split(";")
+    if not column.strip() or any(not r.strip() for r in rows):
+        raise ValueError(f"--column has an empty block: {column!r} (give 'B,H;B,H', bottom "
+                         "to top, metres)")
     return [float_list("--column block", r) for r in rows]
 
 

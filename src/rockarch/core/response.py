@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rockarch.core.validate import P_MAX, P_MIN, RATIO_MAX
+from rockarch.core.validate import P_MAX, P_MIN, RATIO_MAX, numbers
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -88,8 +88,12 @@ def run_batch(p, ratio, run: Callable[[np.ndarray, np.ndarray], tuple], *,
     pairs, so that the numba threads share early-ending runs evenly) and returns the kernel
     arrays (status, t_overturn, max ratio, impacts, *extras); status 1 means collapse.
     """
-    p_arr, r_arr = np.broadcast_arrays(np.asarray(p, dtype=float),
-                                       np.asarray(ratio, dtype=float))
+    p, ratio = numbers("p", p), numbers("ratio", ratio)
+    try:
+        p_arr, r_arr = np.broadcast_arrays(p, ratio)
+    except ValueError:
+        raise ValueError(f"p and ratio must broadcast together, got shapes {p.shape} and "
+                         f"{ratio.shape}") from None
     shape = p_arr.shape
     pf = np.ascontiguousarray(p_arr.ravel())
     rf = np.ascontiguousarray(r_arr.ravel())

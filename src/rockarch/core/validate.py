@@ -7,16 +7,24 @@ import math
 import numpy as np
 
 
-def _show(value) -> str:
-    """A value as a message shows it: plain numbers (no ``np.float64(...)``), short text."""
+def show(value) -> str:
+    """A value as a message shows it: plain numbers (no ``np.float64(...)``), sequences of
+    them as ``(0.3, 1)``, text cut at 60 characters."""
     if isinstance(value, (bool, np.bool_)):
         return str(bool(value))
     if isinstance(value, (int, np.integer)):
         return str(int(value))
     if isinstance(value, (float, np.floating)):
         return f"{float(value):g}"
-    text = repr(value)
+    if isinstance(value, (tuple, list, np.ndarray)) and np.ndim(value) == 1 and len(value) < 20:
+        inner = ", ".join(show(v) for v in value)
+        text = f"[{inner}]" if isinstance(value, list) else f"({inner})"
+    else:
+        text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+_show = show
 
 
 def _kind(value) -> str:
@@ -38,6 +46,22 @@ def number(name: str, value) -> float:
             return float(value)
         raise TypeError(f"{name} must be a number, got {_what(value)}")
     return float(value)
+
+
+def numbers(name: str, values) -> np.ndarray:
+    """``values`` (a number or an array of them) as a float array; TypeError naming
+    ``name`` for None, text (``"1,2"`` is not two numbers) or booleans."""
+    if values is None or isinstance(values, (str, bytes, bool, np.bool_)):
+        raise TypeError(f"{name} must be a number or an array of numbers, got {_what(values)}")
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number or an array of numbers, got "
+                        f"{_kind(values)}") from None
+    kind = np.asarray(values).dtype.kind
+    if kind not in "iuf":
+        raise TypeError(f"{name} must hold numbers, got {'booleans' if kind == 'b' else kind}")
+    return arr
 
 
 def integer(name: str, value) -> int:
@@ -77,6 +101,20 @@ def frequency(name: str, value: float) -> float:
     """Return a frequency parameter p as float if :data:`P_MIN` <= p <= :data:`P_MAX`, else
     ValueError."""
     return in_range(name, value, P_MIN, P_MAX)
+
+
+#: Smallest bisection tolerance of an OAS boundary (ratio units) other than 0 (no
+#: bisection): each halving is a sweep of the p values (about 42 rounds from a ratio step of
+#: 5 to 1e-12, a few thousand ulps of a ratio near 1); 1e-300 would be ~1000 rounds.
+TOL_MIN = 1e-12
+
+
+def tolerance(name: str, value) -> float:
+    """A boundary tolerance: 0 (no bisection) or in [:data:`TOL_MIN`, 1e3]."""
+    v = number(name, value)
+    if v != 0.0:
+        in_range(name, v, TOL_MIN, 1e3)
+    return v
 
 
 def ratio_value(name: str, value) -> float:

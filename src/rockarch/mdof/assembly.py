@@ -25,7 +25,7 @@ import numpy as np
 from rockarch.arch import analyse, voussoirs
 from rockarch.core import limits
 from rockarch.core.constants import G
-from rockarch.core.validate import integer, positive
+from rockarch.core.validate import integer, positive, show
 
 
 @dataclass(frozen=True)
@@ -220,7 +220,7 @@ def column(blocks, *, g: float = G, name: str | None = None) -> Assembly:
         b = tuple(b)
         if len(b) not in (2, 3):
             raise ValueError(f"column block {i}: give (width, height) or (width, height, "
-                             f"x_centre), got {b!r}")
+                             f"x_centre), got {show(b)}")
         w = positive(f"width of block {i}", b[0])
         h = positive(f"height of block {i}", b[1])
         xc = float(b[2]) if len(b) == 3 else 0.0

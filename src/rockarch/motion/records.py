@@ -20,6 +20,7 @@ import numpy as np
 #: Standard gravity [m/s²] used to convert records given in units of g.
 from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD
+from rockarch.core.validate import show
 from rockarch.motion.signals import GroundMotion
 
 _UNITS = {  # factor to m/s²
@@ -320,7 +321,7 @@ _BUNDLED = {180: "RSN6_IMPVALL.I_I-ELC180-hor1.AT2", 270: "RSN6_IMPVALL.I_I-ELC2
 def bundled_record_path(component: int = 180) -> Path:
     """Path of a bundled El Centro 1940 component (180 or 270), see PROVENANCE.md."""
     if component not in _BUNDLED:
-        raise ValueError(f"bundled El Centro components are 180 and 270, got {component!r}")
+        raise ValueError(f"bundled El Centro components are 180 and 270, got {show(component)}")
     return Path(str(resources.files("rockarch.motion") / "data" / _BUNDLED[component]))
 
 

@@ -30,7 +30,7 @@ from tqdm.auto import tqdm
 
 from rockarch.core import sweep
 from rockarch.core.constants import OAS_TOL, G
-from rockarch.core.validate import in_range
+from rockarch.core.validate import in_range, show, tolerance
 from rockarch.motion.intensity import im_value
 from rockarch.motion.signals import GroundMotion
 from rockarch.risk.record_scan import RecordScan, TaskBar, check_island_step
@@ -158,9 +158,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
                   else ratio)
     if ratio[0] < 0:
         raise ValueError("ratio values must be >= 0")
-    tol = float(tol)
-    if not (math.isfinite(tol) and tol >= 0):
-        raise ValueError(f"tol must be a finite number >= 0, got {tol}")
+    tol = tolerance("tol", tol)
     names = tuple(m.name for m in motions) if names is None else tuple(names)
     if len(names) != len(motions):
         raise ValueError("give one name per record")
@@ -309,7 +307,7 @@ def bootstrap(collapse, censored_at=(), *, n: int = N_BOOTSTRAP, level: float = 
 
     if isinstance(n, bool) or int(n) != n or not 1 <= n <= MAX_BOOTSTRAP:
         raise ValueError(f"the number of bootstrap resamples must be an integer in [1, "
-                         f"{MAX_BOOTSTRAP}], got {n!r}")
+                         f"{MAX_BOOTSTRAP}], got {show(n)}")
     if not 0 < level < 1:
         raise ValueError(f"the confidence level must lie in (0, 1), got {level}")
     x = _positive_values("collapse intensities", collapse)

@@ -18,7 +18,7 @@ from rockarch.core import limits
 from rockarch.core.constants import EPS_REST, T_FREE, G
 from rockarch.core.constants import SDOF_H_FACTOR as H_FACTOR
 from rockarch.core.response import Batch, Response, run_batch
-from rockarch.core.validate import frequency, in_range, positive
+from rockarch.core.validate import frequency, in_range, positive, show
 from rockarch.motion.signals import GroundMotion
 from rockarch.rocking import kernels as _k
 
@@ -156,7 +156,7 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
     th0 = in_range("theta0", theta0, -block.alpha, block.alpha, lo_open=True, hi_open=True)
     om0 = float(theta_dot0)
     if not math.isfinite(om0):
-        raise ValueError(f"theta_dot0 must be finite, got {theta_dot0!r}")
+        raise ValueError(f"theta_dot0 must be finite, got {show(theta_dot0)}")
     tk, ak, name, duration = _k.motion_arrays(motion, block.g, "free rocking")
     cap = history_capacity(tk.size, duration + t_free, block.p, h_factor)
     model, prm, tab, amin, level, e = block.kernel_args()

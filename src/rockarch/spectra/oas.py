@@ -21,6 +21,7 @@ from rockarch.core import __version__, sweep
 from rockarch.core.console import on_terminal
 from rockarch.core.constants import OAS_TOL as TOL
 from rockarch.core.paths import atomic_write
+from rockarch.core.validate import tolerance
 from rockarch.motion.signals import GroundMotion
 
 
@@ -90,9 +91,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
         raise ValueError("p values must be > 0")
     if np.any(ratio < 0):
         raise ValueError("ratio values must be >= 0")
-    tol = float(tol)
-    if not (math.isfinite(tol) and tol >= 0):
-        raise ValueError(f"tol must be a finite number >= 0, got {tol}")
+    tol = tolerance("tol", tol)
     n_p, n_r = p.size, ratio.size
     sweep.check_simulations(n_p * n_r, f"{n_p} p × {n_r} ratio values")
     over = np.zeros((n_p, n_r), dtype=bool)
