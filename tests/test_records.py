@@ -119,3 +119,17 @@ def test_binary_and_unknown_units(tmp_path):
         read_record(f.rename(tmp_path / "r.AT2"))
     with pytest.raises(ValueError, match="unknown acceleration unit 'furlong'"):
         read_two_column(_write(tmp_path, "s.txt", "0 1\n0.01 2\n"), units="furlong")
+
+
+def test_two_column_with_a_byte_order_mark_keeps_its_first_sample(tmp_path):
+    f = tmp_path / "bom.txt"
+    f.write_bytes(b"\xef\xbb\xbf0 0.1\n0.01 0.2\n0.02 -0.3\n")
+    assert read_record(f, units="m/s2").a.tolist() == [0.1, 0.2, -0.3]
+
+
+def test_two_column_without_units_warns_on_an_implausible_pga(tmp_path):
+    """A file in mm/s² read as m/s² (PGA 3e5 m/s²): one warning naming the units to give."""
+    f = _write(tmp_path, "mm.txt", "0 1e5\n0.01 2e5\n0.02 -3e5\n")
+    with pytest.warns(UnitsWarning, match="not plausible: wrong units"):
+        read_record(f)
+    assert read_record(f, units="mm/s2").pga == pytest.approx(300.0)

@@ -132,6 +132,8 @@ MAX_ACCELERATION = 1e5 * G_STANDARD
 #: Largest peak (in the file's own numbers) of a two-column record read without units that
 #: is also a plausible peak in g: such a record is read as m/s² with a warning.
 G_LIKE_PEAK = 2.0
+#: Largest plausible PGA [m/s²] (5 g): above it a record read without units warns.
+MAX_PLAUSIBLE_PGA = 5.0 * G_STANDARD
 
 _SEPARATORS = str.maketrans(",;\t", "   ")
 
@@ -139,6 +141,8 @@ _SEPARATORS = str.maketrans(",;\t", "   ")
 def _lines(path: Path):
     """The file's lines, one at a time (latin-1: every byte is a character)."""
     with open(path, encoding="latin-1", newline=None) as f:
+        first = f.readline()
+        yield first.removeprefix("\xef\xbb\xbf")  # a UTF-8 byte-order mark, read as latin-1
         yield from f
 
 
@@ -308,6 +312,11 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
         warnings.warn(UnitsWarning(
             f"{path.name}: read as m/s² (no units given), but its peak {motion.pga:.3g} is "
             f"also a plausible PGA in g: give --units m/s2 or --units g"), stacklevel=2)
+    elif units is None and motion.pga > MAX_PLAUSIBLE_PGA:
+        warnings.warn(UnitsWarning(
+            f"{path.name}: read as m/s² (no units given), its PGA {motion.pga:.4g} m/s² = "
+            f"{motion.pga / G_STANDARD:.3g} g is not plausible: wrong units? (--units cm/s2, "
+            "mm/s2 or g)"), stacklevel=2)
     return motion
 
 

@@ -398,7 +398,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
             motion = read_record(f, units=units)
         for w in caught:
             if issubclass(w.category, UnitsWarning):
-                g_like.append(f.name)
+                if motion.pga <= G_LIKE_PEAK:  # an implausible PGA has its own note below
+                    g_like.append(f.name)
             else:
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
         total += motion.t.size
