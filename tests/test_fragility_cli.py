@@ -85,9 +85,9 @@ def _check_contract(folder, tmp_path):
     (["--alpha", "-1"], "alpha"),
     (["--im", "sa", "--period", "-1"], "--period must be a finite number > 0"),
     (["--im-range", "0.1,x"], "--im-range"),
-    (["--bootstrap", "-1"], "--bootstrap must be >= 0"),
+    (["--bootstrap", "-1"], "--bootstrap must lie in [0, 10000]"),
     (["--records", "/nonexistent/folder"], "no such file or folder"),
-    (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
+    (["--system", "sdof", "--delta", "0.1"], "--alpha does not apply to --system sdof"),
 ])
 def test_bad_input_is_one_line(folder, extra, msg):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",

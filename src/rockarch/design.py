@@ -15,6 +15,7 @@ structure, Eqs. 11.34–11.35).
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,9 +24,11 @@ import xarray as xr
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
 from rockarch.core.constants import OAS_TOL, G
-from rockarch.core.validate import positive
+from rockarch.core.validate import in_range, integer, positive
+from rockarch.motion.signals import GroundMotion
 from rockarch.risk import fragility as fr
 from rockarch.spectra import site as site_mod
+from rockarch.systems import check_system
 
 
 @dataclass(frozen=True)
@@ -173,12 +176,30 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
         :func:`rockarch.risk.fragility.design_summary`.
     executor, store, progress : as in :func:`rockarch.spectra.oas.compute_oas`.
     """
+    check_system(system, "system")
+    if site is not None and not isinstance(site, xr.Dataset):
+        raise TypeError(f"site must be a site OAS (xarray.Dataset of rockarch.spectra.site."
+                        f"load), got {type(site).__name__}")
+    if records is not None and (isinstance(records, (str, bytes, os.PathLike))
+                                or not all(isinstance(m, GroundMotion)
+                                           for m in getattr(records, "motions", records))):
+        raise TypeError("records must be a Suite (ra.read_suite) or a list of GroundMotion, "
+                        f"got {type(records).__name__}")
     if curve not in SYSTEM_CURVES:
         raise ValueError(f"the site curve of a structure's design must be one of "
                          f"{', '.join(SYSTEM_CURVES)}, got {curve!r}")
     if (records is None) == (site is None):
         raise ValueError("give either records or a site OAS")
     g = positive("g", g)
+    # the fragility's numbers before the IDA (minutes) rather than after it
+    if pga is not None:
+        positive("pga [m/s²]", pga)
+    if probability is not None:
+        in_range("probability", probability, 0.0, 1.0, lo_open=True, hi_open=True)
+    in_range("percentile", percentile, 0.0, 100.0)
+    in_range("level", level, 0.0, 1.0, lo_open=True, hi_open=True)
+    if not 0 <= integer("n_bootstrap", n_bootstrap) <= fr.MAX_BOOTSTRAP:
+        raise ValueError(f"n_bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got {n_bootstrap}")
     p, sliding, rock = _structure(system, p)
     ap_min = float(system.ap_min)
     common = {"system": system.name, "p": p, "ap_min": ap_min, "curve": curve, "g": g,
@@ -194,8 +215,6 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
                             pga_safe=r * ap_min,
                             percentile=float(site.attrs.get("percentile", 50.0)),
                             **common)
-    if not 0.0 <= float(percentile) <= 100.0:
-        raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
     names = getattr(records, "names", names)
     motions = getattr(records, "motions", records)
     res = fr.ida(system, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,

@@ -90,8 +90,8 @@ def fragility(
     """Incremental dynamic analysis at one p and a lognormal fragility (maximum likelihood,
     censored records included, bootstrap band). PGA and Sa in m/s², PGV in m/s."""
     im = im.value
-    if bootstrap < 0:
-        raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
+    if not 0 <= bootstrap <= fr.MAX_BOOTSTRAP:
+        raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got {bootstrap}")
     if not 0 < level < 1:
         raise ValueError(f"--level must lie in (0, 1), got {level}")
     sysobj = system_of(opts)

@@ -28,7 +28,7 @@ from rockarch.cli._common import (
 from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import _print_table, ida_sweep_options
-from rockarch.core.validate import positive
+from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
@@ -124,7 +124,7 @@ def design(
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
-    percentile: float = typer.Option(50.0, help="With --records: percentile of the records' "
+    percentile: float = typer.Option(None, help="With --records: percentile of the records' "
                                      "boundaries (--system: collapse PGAs) read by --curve "
                                      "characteristic (lower: safer)."),
     ratio_max: float = typer.Option(None, help="--system with --records: IDA scan limit "
@@ -144,20 +144,21 @@ def design(
                               "(.AT2 files state their own)."),
     pga: float = typer.Option(None, help="With --records: probability of collapse at this "
                               "PGA [m/s²]."),
-    probability: float = typer.Option(0.1, help="With --records: the PGA at this "
-                                      "probability of collapse."),
+    probability: float = typer.Option(None, help="With --records: the PGA at this "
+                                      "probability of collapse (default 0.1)."),
     save_site: Path = typer.Option(None, help="With --records: also write the site OAS "
                                    "computed on the fly (NetCDF, reusable as --site)."),
-    thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
-                                       "equivalent (same ap,min) or lower-bound."),
+    thickness_rule: str = typer.Option(None, help="Replacement catenary thickness: "
+                                       "equivalent (same ap,min; default) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
                               "(percentile), normalised (over p·Tm) or simplified (two "
                               "durations)."),
-    replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
-                                         "(uniform mass) or weighted (the funicular of the "
-                                         "arch's own mass)."),
-    replacement_mass: str = typer.Option("own", help="Replacement mass: own (its uniform "
-                                         "mass) or original (the arch's mass on its axis)."),
+    replacement_axis: str = typer.Option(None, help="Replacement axis: catenary "
+                                         "(uniform mass; default) or weighted (the funicular "
+                                         "of the arch's own mass)."),
+    replacement_mass: str = typer.Option(None, help="Replacement mass: own (its uniform "
+                                         "mass; default) or original (the arch's mass on its "
+                                         "axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
     json_out: bool = JSON_OPT,
@@ -171,9 +172,15 @@ def design(
     With --records the computation runs on the sweep executor and store (the sweep options
     as in oas)."""
     args = {k: v for k, v in locals().items() if k != "opts"} | opts
+    _check_design_inputs(args, records or [])
     if system is not None:
         _design_system(args, records or [], json_out)
         return
+    thickness_rule = thickness_rule or "equivalent"
+    replacement_axis = replacement_axis or "catenary"
+    replacement_mass = replacement_mass or "own"
+    percentile = 50.0 if percentile is None else percentile
+    probability = 0.1 if probability is None else probability
     unused = [k for k in _SYSTEM_ONLY if args[k] is not None]
     shape, span, rise, thickness = (opts[k] for k in ("shape", "span", "rise", "thickness"))
     if unused:
@@ -186,10 +193,6 @@ def design(
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
     check_outputs((report, "--report", "html"), (save_site, "--save-site", "netcdf"))
-    if (site_file is None) == (not records):
-        raise ValueError("give either --site FILE or --records DIR")
-    if save_site is not None and not records:
-        raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
     if records:
         suite = read_records(records, units)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
@@ -211,12 +214,18 @@ def design(
                  "range; the result is a lower bound")
     extra, html_extra = {}, ""
     if records:
-        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
-                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
-                                 ratio=site_ds["ratio"].values)
-        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
-        if report is not None:
-            html_extra = fragility_html(frag, extra["fragility"], suite)
+        try:
+            frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
+                                     alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                                     ratio=site_ds["ratio"].values)
+        except fr.TooFewCollapses as exc:  # the safe PGA is still the answer
+            echo_err(f"warning: {exc}; no fragility")
+            frag, extra = None, {"fragility": None, "note": str(exc)}
+        if frag is not None:
+            extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability,
+                                                   g=g)
+            if report is not None:
+                html_extra = fragility_html(frag, extra["fragility"], suite)
     if report is not None:
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} "
@@ -240,7 +249,7 @@ def design(
                f"ap,min = {c.ap_min:.4f} m/s²")
     typer.echo(f"site {curve} at p: ap/ap,min = {res.ratio:.4f} -> safe PGA "
                f"{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
-    if extra:
+    if extra.get("fragility"):
         f = extra["fragility"]
         typer.echo(f"fragility of the replacement over {f['n_records']} records: median PGA "
                    f"{f['median']:.3f} m/s², beta {f['beta']:.3f}")
@@ -252,24 +261,43 @@ def design(
         typer.echo(f"wrote {report}")
 
 
+#: design options that need --records (a --site file holds its own curves).
+_RECORDS_ONLY = ("pga", "probability", "percentile", "units", "ratio_max", "save_site")
+
+
+def _check_design_inputs(opt: dict, records: list[Path]) -> None:
+    """What ``rockarch design`` can check before any computation: one of --site and
+    --records, the options that go with --records only, and the numbers of the fragility."""
+    if (opt["site_file"] is None) == (not records):
+        raise ValueError("give either --site FILE or --records DIR")
+    if opt["site_file"] is not None:
+        extra = [k for k in _RECORDS_ONLY if opt[k] is not None]
+        if extra:
+            raise ValueError(f"--{extra[0].replace('_', '-')} goes with --records (a --site "
+                             "file holds its own curves)")
+    if opt["pga"] is not None:
+        positive("--pga [m/s²]", opt["pga"])
+    if opt["probability"] is not None:
+        in_range("--probability", opt["probability"], 0.0, 1.0, lo_open=True, hi_open=True)
+    if opt["percentile"] is not None:
+        in_range("--percentile", opt["percentile"], 0.0, 100.0)
+
+
 #: design options of --system only (the arch design by the replacement catenary refuses them).
 _SYSTEM_ONLY = ("alpha", "p", "blocks", *(name for name, _, _ in STRUCTURE), "mass_ratio",
                 "delta", "ap_min", "ratio_max")
 #: design options of the arch design only (with their defaults: given when they differ).
-_ARCH_ONLY = {"thickness_rule": "equivalent", "replacement_axis": "catenary",
-              "replacement_mass": "own", "save_site": None}
+_ARCH_ONLY = ("thickness_rule", "replacement_axis", "replacement_mass", "save_site")
 
 
 def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     """``rockarch design --system KIND``: ra.system from the options, then
     :func:`rockarch.design.design_system` (records: its IDA; --site: equivalent SDOF)."""
     kind = opt["system"].value
-    extra = [k for k, v in _ARCH_ONLY.items() if opt[k] != v]
+    extra = [k for k in _ARCH_ONLY if opt[k] is not None]
     if extra:
         raise ValueError(f"--{extra[0].replace('_', '-')} belongs to the arch design (without "
                          "--system)")
-    if (opt["site_file"] is None) == (not records):
-        raise ValueError("give either --site FILE or --records DIR")
     check_outputs((opt["report"], "--report", "html"))
     if kind in ("frame", "sdof") and opt["p"] is None:
         raise ValueError(f"--system {kind} needs --p (its frequency parameter [1/s])")
@@ -281,8 +309,10 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          blocks=opt["blocks"], mass_ratio=opt["mass_ratio"],
                          delta=opt["delta"], ap_min=opt["ap_min"], g=opt["g"],
                          t_free=opt["t_free"], **mdof_structure(opt))
-    kw = {"curve": opt["curve"], "percentile": opt["percentile"], "g": opt["g"],
-          "pga": opt["pga"], "probability": opt["probability"]}
+    kw = {"curve": opt["curve"],
+          "percentile": 50.0 if opt["percentile"] is None else opt["percentile"],
+          "g": opt["g"], "pga": opt["pga"],
+          "probability": 0.1 if opt["probability"] is None else opt["probability"]}
     suite = None
     if opt["site_file"] is not None:
         res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
@@ -290,8 +320,9 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     else:
         if opt["ratio_steps"] < 2 or (opt["ratio_max"] or 2.0) <= 1:
             raise ValueError("the IDA scan needs --ratio-steps >= 2 and --ratio-max > 1")
-        if opt["bootstrap"] < 0:
-            raise ValueError(f"--bootstrap must be >= 0, got {opt['bootstrap']}")
+        if not 0 <= opt["bootstrap"] <= fr.MAX_BOOTSTRAP:
+            raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got "
+                             f"{opt['bootstrap']}")
         ratios = ratio_grid(1.0, opt["ratio_max"], opt["ratio_steps"])
         suite = read_records(records, opt["units"])
         with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),

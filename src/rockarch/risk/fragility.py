@@ -30,6 +30,7 @@ from tqdm.auto import tqdm
 
 from rockarch.core import sweep
 from rockarch.core.constants import OAS_TOL, G
+from rockarch.core.validate import in_range, show, tolerance
 from rockarch.motion.intensity import im_value
 from rockarch.motion.signals import GroundMotion
 from rockarch.risk.record_scan import RecordScan, TaskBar, check_island_step
@@ -43,6 +44,8 @@ IMS = ("pga", "pgv", "sa")
 IM_UNITS = {"pga": "m/s2", "pgv": "m/s", "sa": "m/s2"}
 #: Bootstrap resamples of the confidence band unless told otherwise.
 N_BOOTSTRAP = 500
+#: Most bootstrap resamples (each refits the lognormal: ~1 ms).
+MAX_BOOTSTRAP = 10_000
 
 
 # --------------------------------------------------------------------------- the scan
@@ -155,9 +158,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
                   else ratio)
     if ratio[0] < 0:
         raise ValueError("ratio values must be >= 0")
-    tol = float(tol)
-    if not (math.isfinite(tol) and tol >= 0):
-        raise ValueError(f"tol must be a finite number >= 0, got {tol}")
+    tol = tolerance("tol", tol)
     names = tuple(m.name for m in motions) if names is None else tuple(names)
     if len(names) != len(motions):
         raise ValueError("give one name per record")
@@ -304,9 +305,9 @@ def bootstrap(collapse, censored_at=(), *, n: int = N_BOOTSTRAP, level: float = 
     """
     from scipy.stats import norm
 
-    if isinstance(n, bool) or int(n) != n or n < 1:
-        raise ValueError(f"the number of bootstrap resamples must be a positive integer, "
-                         f"got {n!r}")
+    if isinstance(n, bool) or int(n) != n or not 1 <= n <= MAX_BOOTSTRAP:
+        raise ValueError(f"the number of bootstrap resamples must be an integer in [1, "
+                         f"{MAX_BOOTSTRAP}], got {show(n)}")
     if not 0 < level < 1:
         raise ValueError(f"the confidence level must lie in (0, 1), got {level}")
     x = _positive_values("collapse intensities", collapse)
@@ -376,15 +377,18 @@ class Fragility:
 
 
 def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float = 0.95,
-            im_grid=None, seed: int = 0) -> Fragility:
-    """Lognormal fit (censored records included) and bootstrap band of an IDA."""
+            im_grid=None, seed: int = 0,
+            hint: str = "raise the scan limit, e.g. --ratio-max 10") -> Fragility:
+    """Lognormal fit (censored records included) and bootstrap band of an IDA; ``hint``:
+    what to do when fewer than two records collapse (:class:`TooFewCollapses`)."""
     x = result.im_collapse[~result.censored]
     c = result.im_limit[result.censored]
     if np.unique(x).size < 2:
+        if len(result.records) < 2:
+            hint = "give at least two records"
         raise TooFewCollapses(f"only {x.size} of {len(result.records)} records collapse up to "
-                         f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least two "
-                         "different collapse points (raise the scan limit, e.g. "
-                         "--ratio-max 10)")
+                              f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least "
+                              f"two different collapse points ({hint})")
     fit = fit_lognormal(x, c)
     ci = {} if n_bootstrap == 0 else bootstrap(x, c, n=n_bootstrap, level=level,
                                                im_grid=im_grid, seed=seed)
@@ -415,7 +419,8 @@ def site_fragility(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
               store=store, progress=progress)
     res = replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
                   f"(replacement, ap,min = {ap_min:.4g} m/s2)")
-    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed)
+    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed,
+                   hint="give more records, or records that collapse at different levels")
 
 
 def design_summary(frag: Fragility, *, pga: float | None = None,
@@ -433,6 +438,8 @@ def design_summary(frag: Fragility, *, pga: float | None = None,
             raise ValueError(f"--pga must be a finite number > 0 [m/s²], got {pga}")
         out["probability_at_pga"] = {"pga": pga, "probability": float(fit.probability(pga))}
     if probability is not None:
+        probability = in_range("probability", probability, 0.0, 1.0, lo_open=True,
+                               hi_open=True)
         x = float(fit.intensity(probability))
         out["pga_at_probability"] = {"probability": probability, "pga": x, "pga_g": x / g}
     return out

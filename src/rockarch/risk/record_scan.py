@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch.core.validate import show
 from rockarch.motion.signals import GroundMotion
 from rockarch.spectra.oas import refine_boundary
 
@@ -21,7 +22,7 @@ from rockarch.spectra.oas import refine_boundary
 def check_island_step(step) -> int:
     """The adaptive scan's step (:class:`RecordScan`, Eq. (11.30)): an integer >= 1."""
     if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise ValueError(f"the island step must be an integer >= 1, got {step!r}")
+        raise ValueError(f"the island step must be an integer >= 1, got {show(step)}")
     return int(step)
 
 
