@@ -20,10 +20,16 @@ from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.risk import fragility as fr
-from rockarch.risk.record_scan import check_island_step
+from rockarch.risk.record_scan import SEARCH_STEP, check_island_step, check_search_step
 
-#: The --im choices (the library's registry).
-Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
+#: The --im choices (the library's registry, and "all": the dispersion of each on one IDA).
+Im = Enum("Im", {v: v for v in (*fr.IMS, "all")}, type=str)
+
+#: --search-step's help (fragility and design).
+SEARCH_HELP = (f"Search for collapse islands narrower than the grid below its first collapse, "
+               f"every STEP of ap/ap,min from 1 (the first collapse is the lowest found). "
+               f"Default {SEARCH_STEP:g} for block, frame, sdof and fourhinge, 0 (off: the "
+               "grid alone) for mdof.")
 
 #: From this many records the IDA runs on local processes unless told otherwise: each
 #: record is one task (its scan and bisection), records in parallel across processes
@@ -65,8 +71,11 @@ def fragility(
                                        "record files; several may follow one --records."),
     more: list[Path] = typer.Argument(None, hidden=True),
     units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
-    im: Im = typer.Option("pga", help="Intensity measure of the curve's x axis."),
-    period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa)."),
+    im: Im = typer.Option("pga", help="Intensity measure of the curve's x axis: PGA, PGV, "
+                          "Sa(T), PGA/(g tan alpha) (pga_norm; ap,min for any system), "
+                          "PGV*p/(g tan alpha) (pgv_norm); all: the median and beta of "
+                          "each on the same IDA (Sa at T = 2 pi/p unless --period)."),
+    period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa, --im all)."),
     im_range: str = typer.Option(None, help="IM range of the curve and band: LO,HI in g "
                                  "(pga, sa) or m/s (pgv); default the records' range "
                                  "widened by 2."),
@@ -74,6 +83,7 @@ def fragility(
                                     "`rockarch oas`); records safe up to it are censored."),
     ratio_steps: int = typer.Option(81, help="Scan values of ap/ap,min from 1."),
     tol: float = cc.TOL_OPT,
+    search_step: float = typer.Option(None, help=SEARCH_HELP),
     island_step: int = typer.Option(1, help="Adaptive scan: every ratio up to the first "
                                     "collapse, then every K-th one, each safe value found "
                                     "widened to its safe island (same collapse points, "
@@ -90,6 +100,12 @@ def fragility(
     """Incremental dynamic analysis at one p and a lognormal fragility (maximum likelihood,
     censored records included, bootstrap band). PGA and Sa in m/s², PGV in m/s."""
     im = im.value
+    if im == "all":
+        if plot is not None or im_range is not None:
+            raise ValueError("--im all prints a table of every IM: --plot and --im-range go "
+                             "with one IM (--im pga, pgv, sa, pga_norm, pgv_norm)")
+        if period is not None and not (np.isfinite(period) and period > 0):
+            raise ValueError(f"--period must be a finite number > 0, got {period}")
     if bootstrap < 0:
         raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
     if not 0 < level < 1:
@@ -102,16 +118,22 @@ def fragility(
                          f"{ratio_max}")
     ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
     check_island_step(island_step)
-    rng = im_range_si(im_range, im)
+    if search_step is not None:
+        check_search_step(search_step)
+    rng = None if im == "all" else im_range_si(im_range, im)
     check_outputs((plot, "--plot", "png"))
     suite = read_records(list(records) + list(more or []), units)
     motions = suite.motions
     with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
-        res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
-                     period=period, ratio=ratios, tol=tol,
-                     progress=progress and sys.stderr.isatty(), executor=executor,
-                     store=chunk_store, island_step=island_step)
+        res = fr.ida(sysobj, motions, p, names=suite.names,
+                     im="pga" if im == "all" else im, period=None if im == "all" else period,
+                     ratio=ratios, tol=tol, progress=progress and sys.stderr.isatty(),
+                     executor=executor, store=chunk_store, island_step=island_step,
+                     search_step=search_step)
+    if im == "all":
+        _all_ims(res, motions, period, bootstrap, level, json_out)
+        return
     if rng is None:
         known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
         rng = (known.min() / 2, known.max() * 2)
@@ -129,6 +151,37 @@ def fragility(
     _print_table(frag)
     if plot is not None:
         typer.echo(f"wrote {plot}")
+
+
+def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
+             json_out: bool) -> None:
+    """``--im all``: the fit of the same IDA in every IM (fragility.compare_ims)."""
+    if np.unique(res.ratio_collapse[~res.censored]).size < 2:
+        raise ValueError(f"only {int((~res.censored).sum())} of {len(res.records)} records "
+                         f"collapse up to ap/ap,min = {res.ratio[-1]:g}: no IM can be fitted "
+                         "(raise the scan limit, e.g. --ratio-max 10)")
+    rows = fr.compare_ims(res, motions, period=period, n_bootstrap=bootstrap, level=level)
+    if json_out:
+        points = [{"record": name, "ratio_collapse": float(c) if np.isfinite(c) else None,
+                   "censored": bool(not np.isfinite(c)), "resurrections": int(n)}
+                  for name, c, n in zip(res.records, res.ratio_collapse, res.resurrections,
+                                        strict=True)]
+        cc.print_json({"system": res.system, "p": res.p, "ap_min": res.ap_min,
+                       "n_records": len(res.records), "n_censored": int(res.censored.sum()),
+                       "search_step": res.search_step, "ims": rows, "points": points})
+        return
+    typer.echo(f"dispersion of each IM on one IDA: {res.system} at p = {res.p:g} 1/s over "
+               f"{len(res.records)} records ({int(res.censored.sum())} censored)")
+    lvl = f"{100 * level:g} % interval of beta" if bootstrap else ""
+    typer.echo(f"{'IM':<24} {'units':>5} {'median':>9} {'beta':>6}  {lvl}".rstrip())
+    for r in rows:
+        name = r["label"] if "period" not in r else f"Sa(T = {r['period']:.3g} s)"
+        ci = r["ci"].get("beta")
+        typer.echo(f"{name:<24} {r['units']:>5} {r['median']:>9.4g} {r['beta']:>6.3f}"
+                   + (f"  {ci[0]:.3f} … {ci[1]:.3f}" if ci else ""))
+    best = min(rows, key=lambda r: r["beta"])
+    typer.echo(f"lowest beta: {best['label']} (the dimensionless IMs are PGA and PGV times "
+               "constants here: the same beta)")
 
 
 def _print_table(frag: fr.Fragility) -> None:

@@ -12,7 +12,8 @@ from rockarch.risk.fragility import Fragility
 
 #: Plot units of each intensity measure: (label, factor from SI).
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
-           "pgv": ("PGV [m/s]", 1.0)}
+           "pgv": ("PGV [m/s]", 1.0), "pga_norm": ("PGA/(g tan α) [-]", 1.0),
+           "pgv_norm": ("PGV·p/(g tan α) [-]", 1.0)}
 
 
 def display_units(im: str) -> tuple[str, float]:
