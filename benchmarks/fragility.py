@@ -88,8 +88,11 @@ def main() -> None:
     assert np.array_equal(f_sin.ida.ratio_collapse, f_spool.ida.ratio_collapse,
                           equal_nan=True)
     found = f_sin.ida.ratio_collapse
-    assert np.all((found <= b_ref) | ~np.isfinite(found))
-    lower = np.isfinite(found) & (found < b_ref * 0.99)
+    # at or below the grid's collapse; a record censored on the grid may collapse on
+    # an island the search finds, never the reverse
+    assert np.all(np.where(np.isfinite(b_ref), found <= b_ref, True))
+    assert not np.any(np.isfinite(b_ref) & ~np.isfinite(found))
+    lower = np.isfinite(found) & ~(found >= b_ref * 0.99)
     print(f"grid alone: collapse points bit-identical to the reference; median "
           f"{f_in.fit.median:.4g} m/s2, beta {f_in.fit.beta:.3f} ({f_in.fit.n_censored} "
           f"censored; reference fit {fit_ref.median:.4g}, {fit_ref.beta:.3f})")

@@ -23,16 +23,9 @@ def full(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def folder(tmp_path_factory):
-    """Their first 12 s (the strong motion) as .AT2 files: the same checks, faster."""
-    import rockarch as ra
-    from rockarch.motion.suite import write_at2
-
-    d = tmp_path_factory.mktemp("short")
-    for c in (180, 270):
-        m = ra.el_centro(c)
-        write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
-    return d
+def folder(short_records):
+    """The first 12 s of both El Centro components (tests/conftest.py)."""
+    return short_records
 
 
 @pytest.mark.slow

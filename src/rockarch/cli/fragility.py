@@ -14,7 +14,7 @@ import typer
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import echo_err, guarded, read_records
-from rockarch.cli._groups import SWEEP, SYSTEM, options, sweep_options, system_of
+from rockarch.cli._groups import SWEEP, SYSTEM, Group, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
@@ -49,6 +49,59 @@ def ida_sweep_options(opts: dict, n_records: int) -> dict:
     return sweep
 
 
+#: The IDA of a structure over records (fragility; risk with the fragility inline): the
+#: structure's p, the records and the scan (docs/theory.md §11.3).
+IDA: Group = (
+    ("p", float, typer.Option(None, "--p", help="Frequency parameter of the structure "
+                              "[1/s].")),
+    ("records", list[Path], typer.Option(None, "--records", help="Folder of .AT2 records or "
+                                         "record files; several may follow one --records.")),
+    ("more", list[Path], typer.Argument(None, hidden=True)),
+    ("units", str, typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2.")),
+    ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
+                                      "`rockarch oas`); records safe up to it are "
+                                      "censored.")),
+    ("ratio_steps", int, typer.Option(81, help="Scan values of ap/ap,min from 1.")),
+    ("tol", float, cc.TOL_OPT),
+    ("search_step", float, typer.Option(None, help=SEARCH_HELP)),
+    ("island_step", int, typer.Option(1, help="Adaptive scan: every ratio up to the first "
+                                      "collapse, then every K-th one, each safe value found "
+                                      "widened to its safe island (same collapse points, "
+                                      "fewer simulations; islands narrower than K ratios "
+                                      "may be missed). 1: every ratio.")),
+)
+
+
+def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
+            ) -> tuple[fr.IDAResult, list]:
+    """The IDA of the SYSTEM, IDA and SWEEP options of a command in ``im`` (and the
+    motions): options checked before any record is read."""
+    if opts["p"] is None:
+        raise ValueError("give the structure's frequency parameter --p [1/s]")
+    if not opts["records"]:
+        raise ValueError("give the records: --records DIR (or files)")
+    sysobj = system_of(opts)
+    if opts["ratio_steps"] < 2:
+        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
+    if opts["ratio_max"] is not None and not opts["ratio_max"] > 1:
+        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
+                         f"{opts['ratio_max']}")
+    ratios = cc.ratio_grid(1.0, opts["ratio_max"], opts["ratio_steps"])
+    check_island_step(opts["island_step"])
+    if opts["search_step"] is not None:
+        check_search_step(opts["search_step"])
+    suite = read_records(list(opts["records"]) + list(opts["more"] or []), opts["units"])
+    motions = suite.motions
+    with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
+                    echo=echo_err) as (executor, chunk_store):
+        res = fr.ida(sysobj, motions, opts["p"], names=suite.names, im=im, period=period,
+                     ratio=ratios, tol=opts["tol"],
+                     progress=progress and sys.stderr.isatty(), executor=executor,
+                     store=chunk_store, island_step=opts["island_step"],
+                     search_step=opts["search_step"])
+    return res, motions
+
+
 def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
     """--im-range LO,HI in display units (g for pga and sa, m/s for pgv) → SI."""
     if text is None:
@@ -63,14 +116,9 @@ def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
 
 @app.command(short_help="Fragility curve of a structure over a suite of records (IDA).")
 @guarded
-@options(SYSTEM, before="p")
+@options(SYSTEM, IDA, before="im")
 @options(SWEEP)
 def fragility(
-    p: float = typer.Option(..., "--p", help="Frequency parameter of the structure [1/s]."),
-    records: list[Path] = typer.Option(..., "--records", help="Folder of .AT2 records or "
-                                       "record files; several may follow one --records."),
-    more: list[Path] = typer.Argument(None, hidden=True),
-    units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
     im: Im = typer.Option("pga", help="Intensity measure of the curve's x axis: PGA, PGV, "
                           "Sa(T), PGA/(g tan alpha) (pga_norm; ap,min for any system), "
                           "PGV*p/(g tan alpha) (pgv_norm); all: the median and beta of "
@@ -79,16 +127,6 @@ def fragility(
     im_range: str = typer.Option(None, help="IM range of the curve and band: LO,HI in g "
                                  "(pga, sa) or m/s (pgv); default the records' range "
                                  "widened by 2."),
-    ratio_max: float = typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
-                                    "`rockarch oas`); records safe up to it are censored."),
-    ratio_steps: int = typer.Option(81, help="Scan values of ap/ap,min from 1."),
-    tol: float = cc.TOL_OPT,
-    search_step: float = typer.Option(None, help=SEARCH_HELP),
-    island_step: int = typer.Option(1, help="Adaptive scan: every ratio up to the first "
-                                    "collapse, then every K-th one, each safe value found "
-                                    "widened to its safe island (same collapse points, "
-                                    "fewer simulations; islands narrower than K ratios "
-                                    "may be missed). 1: every ratio."),
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="Bootstrap resamples of the band "
                                   "(0: none)."),
     level: float = typer.Option(0.95, help="Confidence level of the band."),
@@ -110,27 +148,10 @@ def fragility(
         raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
     if not 0 < level < 1:
         raise ValueError(f"--level must lie in (0, 1), got {level}")
-    sysobj = system_of(opts)
-    if ratio_steps < 2:
-        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
-    if ratio_max is not None and not ratio_max > 1:
-        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
-                         f"{ratio_max}")
-    ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
-    check_island_step(island_step)
-    if search_step is not None:
-        check_search_step(search_step)
     rng = None if im == "all" else im_range_si(im_range, im)
     check_outputs((plot, "--plot", "png"))
-    suite = read_records(list(records) + list(more or []), units)
-    motions = suite.motions
-    with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
-                    echo=echo_err) as (executor, chunk_store):
-        res = fr.ida(sysobj, motions, p, names=suite.names,
-                     im="pga" if im == "all" else im, period=None if im == "all" else period,
-                     ratio=ratios, tol=tol, progress=progress and sys.stderr.isatty(),
-                     executor=executor, store=chunk_store, island_step=island_step,
-                     search_step=search_step)
+    res, motions = run_ida(opts, "pga" if im == "all" else im,
+                           None if im == "all" else period, progress=progress)
     if im == "all":
         _all_ims(res, motions, period, bootstrap, level, json_out)
         return

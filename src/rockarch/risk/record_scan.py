@@ -97,13 +97,14 @@ class RecordScan:
     most s values apart and are taken as collapse: an island narrower than s grid values
     that falls between them is missed.
 
-    The search (``search_step`` h > 0, Eq. (11.30a)): collapse islands narrower than the
-    grid's step below its first collapse are looked for on the values grid[0] + k·h
-    between grid[0] and the grid's first collapse (the whole grid if none), from the
+    The search (``search_step`` h > 0, Eq. (11.30a)): after the grid's collapse point
+    (the OAS boundary b, bisected), collapse islands narrower than the grid's step are
+    looked for on the values grid[0] + k·h below b (the whole grid if none), from the
     bottom up, in batches, until one collapses; the collapse point is then bisected
-    between the last safe value of the search and that collapse. An island narrower than h
-    that falls between two values of the search is missed. h = 0: the grid alone (the
-    collapse point is then the record's OAS boundary at p, bit for bit).
+    between the last safe value of the search and that collapse. So the collapse point is
+    never above b, and equals it when the search finds nothing below. An island narrower
+    than h that falls between two values of the search is missed. h = 0: the grid alone
+    (the collapse point is b, bit for bit).
     """
 
     system: object
@@ -124,35 +125,39 @@ class RecordScan:
         motion = records[int(ks[0])]
         grid = np.ravel(np.asarray(ratio, dtype=float))[:-1]
         over, resp = self._scan(motion, grid)
-        bracket, bover = self._search(motion, grid, over)
 
         def run(tasks):
             return [self.system.run(motion, np.full(np.size(r), self.p), np.ravel(r))
                     for _, r in tasks]
 
-        collapse = refine_boundary(run, np.array([self.p]), bracket, bover[None], self.tol,
-                                    TaskBar(), 1)[0]
+        def bisect(ratios, verdicts):
+            return refine_boundary(run, np.array([self.p]), ratios, verdicts[None], self.tol,
+                                   TaskBar(), 1)[0]
+
+        collapse = bisect(grid, over)  # the record's OAS boundary at p
+        bracket = self._search(motion, grid, over, collapse)
+        if bracket is not None:  # a collapse island below it: the first collapse found
+            collapse = bisect(*bracket)
         return np.append(over, bool(np.isfinite(collapse))), np.append(resp, collapse)
 
-    def _search(self, motion: GroundMotion, grid: np.ndarray, over: np.ndarray):
-        """The bracket of the bisection: (ratios, verdicts) whose first collapse is the
-        record's first collapse and whose value before it the last safe one. Without a
-        search, the grid itself; with one, the first collapse among grid[0] + k·h below
-        the grid's first collapse (or that collapse) and the value run just before it."""
+    def _search(self, motion: GroundMotion, grid: np.ndarray, over: np.ndarray,
+                boundary: float):
+        """The bracket (ratios, verdicts) of the bisection of a collapse below the grid's
+        ``boundary`` (bisected; NaN: censored): the first collapse among the values
+        grid[0] + k·h below it and the value before it (safe), or None (no search, or no
+        collapse found below the boundary)."""
         h = float(self.search_step)
         if h <= 0 or grid.size == 0:
-            return grid, over
+            return None
         c = int(over.argmax()) if over.any() else grid.size
-        top = grid[c] if c < grid.size else grid[-1]
-        # the search values strictly inside the grid's safe part, not on the grid (those
-        # ran); rounded as the grid of the CLI is, so that 1.7 is 1.7
+        top = boundary if np.isfinite(boundary) else grid[-1]
+        # the search values below the boundary, not on the grid (those ran); rounded as
+        # the grid of the CLI is, so that 1.7 is 1.7
         k = np.arange(int(math.floor((top - grid[0]) / h + 1e-9)) + 1)
         values = np.round(grid[0] + h * k, 12)
-        values = values[(values < top) if c < grid.size else (values <= top)]
+        values = values[(values < top) if np.isfinite(boundary) else (values <= top)]
         safe = grid[:c]
         values = np.setdiff1d(values, safe)
-        ratios = np.union1d(values, safe)  # every value below the first collapse found
-        found = None
         import numba
 
         batch = SEARCH_BATCH * max(numba.get_num_threads(), 1)
@@ -162,15 +167,12 @@ class RecordScan:
             o = np.asarray(o, dtype=bool)
             if o.any():
                 found = float(chunk[int(o.argmax())])
-                break
-        if found is None:
-            if c == grid.size:  # no collapse up to the scan limit: censored
-                return grid, over
-            found = float(grid[c])
-        below = ratios[ratios < found]
-        if below.size == 0:
-            return np.array([found]), np.array([True])
-        return np.array([below[-1], found]), np.array([False, True])
+                ratios = np.union1d(values, safe)  # every value run below it is safe
+                below = ratios[ratios < found]
+                if below.size == 0:
+                    return np.array([found]), np.array([True])
+                return np.array([below[-1], found]), np.array([False, True])
+        return None
 
     def _scan(self, motion: GroundMotion, grid: np.ndarray):
         """(verdicts, responses) on the grid; responses NaN where not run."""
