@@ -76,8 +76,9 @@ def test_inline_fragility_runs_the_ida_in_the_hazards_im(folder, tmp_path):
     args = ["--system", "block", "--alpha", "0.1", "--p", "2", "--records", str(folder),
             "--no-store"]
     inline = _json(["risk", "--hazard", TWO_COLUMN, *args, "--json"])
-    frag = _json(["fragility", *args, "--json", "--bootstrap", "0"])
-    (tmp_path / "f.json").write_text(json.dumps(frag))
+    frag = _json(["fragility", *args, "--json", "--bootstrap", "0", "--out",
+                  str(tmp_path / "f.json")])
+    assert json.loads((tmp_path / "f.json").read_text()) == frag  # --out: what --json prints
     via = _json(["risk", "--hazard", TWO_COLUMN, "--fragility", str(tmp_path / "f.json"),
                  "--json"])
     assert inline["fragility"]["median"] == frag["median"]
@@ -99,6 +100,7 @@ def test_inline_fragility_runs_the_ida_in_the_hazards_im(folder, tmp_path):
     (["--fragility", "F", "--years", "0"], "--years must be a finite number > 0"),
     (["--fragility", "F", "--site-row", "-1"], "--site-row must be >= 0"),
     (["--fragility", "F", "--plot", "x.pdf"], "--plot"),
+    (["--fragility", "F", "--json", "--p", "x"], "Invalid value for '--p'"),
     (["--fragility", "/nonexistent.json"], "/nonexistent.json: no such file"),
     (["--p", "2"], "give the records"),
 ])

@@ -131,6 +131,8 @@ def fragility(
                                   "(0: none)."),
     level: float = typer.Option(0.95, help="Confidence level of the band."),
     plot: Path = typer.Option(None, help="Write a PNG of the curve, band and points."),
+    out: Path = typer.Option(None, help="Also write the JSON that --json prints to this "
+                             "file (e.g. for `rockarch risk --fragility FILE`)."),
     json_out: bool = cc.JSON_OPT,
     progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
     **opts,
@@ -149,11 +151,11 @@ def fragility(
     if not 0 < level < 1:
         raise ValueError(f"--level must lie in (0, 1), got {level}")
     rng = None if im == "all" else im_range_si(im_range, im)
-    check_outputs((plot, "--plot", "png"))
+    check_outputs((plot, "--plot", "png"), (out, "--out", "json"))
     res, motions = run_ida(opts, "pga" if im == "all" else im,
                            None if im == "all" else period, progress=progress)
     if im == "all":
-        _all_ims(res, motions, period, bootstrap, level, json_out)
+        _all_ims(res, motions, period, bootstrap, level, json_out, out)
         return
     if rng is None:
         known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
@@ -166,30 +168,35 @@ def fragility(
         frag = fr.Fragility(res, None, {})
     if plot is not None:
         save_figure(plot_fragility(frag, rng), plot)
+    if out is not None:
+        cc.write_json(out, frag.to_dict())
     if json_out:
         cc.print_json(frag.to_dict())
         return
     _print_table(frag)
-    if plot is not None:
-        typer.echo(f"wrote {plot}")
+    for path in (p for p in (plot, out) if p is not None):
+        typer.echo(f"wrote {path}")
 
 
 def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
-             json_out: bool) -> None:
+             json_out: bool, out: Path | None) -> None:
     """``--im all``: the fit of the same IDA in every IM (fragility.compare_ims)."""
     if np.unique(res.ratio_collapse[~res.censored]).size < 2:
         raise ValueError(f"only {int((~res.censored).sum())} of {len(res.records)} records "
                          f"collapse up to ap/ap,min = {res.ratio[-1]:g}: no IM can be fitted "
                          "(raise the scan limit, e.g. --ratio-max 10)")
     rows = fr.compare_ims(res, motions, period=period, n_bootstrap=bootstrap, level=level)
+    points = [{"record": name, "ratio_collapse": float(c) if np.isfinite(c) else None,
+               "censored": bool(not np.isfinite(c)), "resurrections": int(n)}
+              for name, c, n in zip(res.records, res.ratio_collapse, res.resurrections,
+                                    strict=True)]
+    obj = {"system": res.system, "p": res.p, "ap_min": res.ap_min,
+           "n_records": len(res.records), "n_censored": int(res.censored.sum()),
+           "search_step": res.search_step, "ims": rows, "points": points}
+    if out is not None:
+        cc.write_json(out, obj)
     if json_out:
-        points = [{"record": name, "ratio_collapse": float(c) if np.isfinite(c) else None,
-                   "censored": bool(not np.isfinite(c)), "resurrections": int(n)}
-                  for name, c, n in zip(res.records, res.ratio_collapse, res.resurrections,
-                                        strict=True)]
-        cc.print_json({"system": res.system, "p": res.p, "ap_min": res.ap_min,
-                       "n_records": len(res.records), "n_censored": int(res.censored.sum()),
-                       "search_step": res.search_step, "ims": rows, "points": points})
+        cc.print_json(obj)
         return
     typer.echo(f"dispersion of each IM on one IDA: {res.system} at p = {res.p:g} 1/s over "
                f"{len(res.records)} records ({int(res.censored.sum())} censored)")
@@ -203,6 +210,8 @@ def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
     best = min(rows, key=lambda r: r["beta"])
     typer.echo(f"lowest beta: {best['label']} (the dimensionless IMs are PGA and PGV times "
                "constants here: the same beta)")
+    if out is not None:
+        typer.echo(f"wrote {out}")
 
 
 def _print_table(frag: fr.Fragility) -> None:

@@ -141,7 +141,8 @@ def print_risk(curve, frag, result, described: str) -> None:
             typer.echo(f"  {a:>8.4g} … {b:<8.4g} {100 * s:5.1f} %")
             shown += s
     typer.echo(f"  other bins {100 * (1 - shown):5.1f} %")
-    below, above = result.outside_share
+    share = 100 * result.extrapolated_share
     typer.echo(f"largest contribution at {name} {result.mode / f:.3g} {units}; half of "
                f"lambda_c below {result.median_im / f:.3g} {units}; "
-               f"{100 * (below + above):.2g} % from beyond the curve (extrapolated)")
+               + ("< 0.01" if share < 0.01 else f"{share:.2g}")
+               + " % of it rests on the curve's extrapolation")

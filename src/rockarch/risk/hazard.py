@@ -548,9 +548,9 @@ def _coverage_message(hazard, frag, total, share, guessed, lower) -> str:
     return (f"the hazard curve ({hazard.label} {hazard.x[0] / f:.3g} … "
             f"{hazard.x[-1] / f:.3g} {hazard.units}) does not cover the fragility (1–99 % "
             f"between {lo / f:.3g} and {hi / f:.3g} {hazard.units}): "
-            f"{100 * guessed:.1f} % of λ_c = {total:.3g}/yr rests on its extrapolation "
+            f"{100 * guessed:.1f} % of lambda_c = {total:.3g}/yr rests on its extrapolation "
             f"{where} it (its end segments as power laws); without extrapolation "
-            f"λ_c >= {lower:.3g}/yr, a lower bound (Eq. 11.40). Extend the curve, or accept "
+            f"lambda_c >= {lower:.3g}/yr, a lower bound (Eq. 11.40). Extend the curve, or accept "
             "the extrapolation with --extrapolate")
 
 
