@@ -249,3 +249,17 @@ def test_poisson_probability_and_its_inverse():
     assert hz.probability_in(1e-3, 50) == pytest.approx(1 - math.exp(-0.05))
     assert hz.rate_for_probability(hz.probability_in(2e-4, 50), 50) == pytest.approx(2e-4)
     assert hz.poe_to_rate(0.1, 50) == pytest.approx(1 / 474.56, rel=1e-4)  # the 475 years
+
+
+def test_a_sharp_fragility_gives_the_hazard_at_its_median():
+    # beta -> 0: the structure collapses exactly above theta, so lambda_c -> H(theta)
+    # (Eq. 11.36); beta = 1e-4 moves it by k^2 beta^2 / 2 ~ 1e-8 inside a power-law piece
+    # (theta off the curve's levels: at a kink the two slopes give a first-order term
+    # ~ beta (k1 - k2)/2.5, 6e-6), and the grid stays small (fine steps only where P varies)
+    curve = hz.read_hazard(TWO_COLUMN)
+    theta = 0.27 * G_STANDARD
+    res = hz.collapse_rate(curve, hz.fragility_curve("pga", theta, 1e-4))
+    assert res.annual_rate == pytest.approx(float(curve.rate_at(theta)), rel=1e-6)
+    assert res.im_grid.size < 10_000
+    with pytest.raises(ValueError, match="a fragility in Sa needs its period"):
+        hz.fragility_curve("sa", 1.0, 0.3)

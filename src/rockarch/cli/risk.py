@@ -125,7 +125,7 @@ def print_risk(curve, frag, result, described: str) -> None:
     f, units, name = curve.factor, curve.units, curve.label
     how = ("annual rates" if curve.investigation_time is None else
            f"OpenQuake poe in {curve.investigation_time:g} years -> rates")
-    typer.echo(f"hazard: {curve.source}: {name} {curve.x[0] / f:.4g} … "
+    typer.echo(f"hazard: {Path(curve.source).name}: {name} {curve.x[0] / f:.4g} … "
                f"{curve.x[-1] / f:.4g} {units}, {len(curve.x)} levels ({how})")
     typer.echo(f"fragility: {described}: median {name} {frag.median / f:.4g} {units}, "
                f"beta {frag.beta:.3f}")

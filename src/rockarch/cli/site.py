@@ -314,7 +314,7 @@ def _conditional(opt: dict) -> float | None:
 
 def _print_risk(risk) -> None:
     r, c = risk.result, risk.hazard
-    typer.echo(f"risk at the site of {c.source} ({c.label} {c.x[0] / c.factor:.4g} … "
+    typer.echo(f"risk at the site of {Path(c.source).name} ({c.label} {c.x[0] / c.factor:.4g} … "
                f"{c.x[-1] / c.factor:.4g} {c.units}): annual frequency of collapse "
                f"{r.annual_rate:.3g} /yr, P(collapse in {r.years:g} years) = "
                f"{r.probability:.3g}")

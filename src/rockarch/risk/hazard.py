@@ -49,6 +49,8 @@ OUTSIDE_TOL = 0.01
 #: β/STEPS_PER_BETA of ln x: the midpoint rule's error is below 1e-6 of λ_c.
 Z_SPAN = 8.0
 STEPS_PER_BETA = 200
+#: Steps per unit of ln x outside θ·exp(±Z_SPAN·β) (for the plotted density only).
+COARSE_PER_LN = 100
 #: OpenQuake's units (hazardlib): PGA and SA in g, PGV in cm/s.
 OPENQUAKE_UNITS = {"pga": "g", "sa": "g", "pgv": "cm/s"}
 
@@ -350,6 +352,10 @@ def fragility_curve(im: str, median: float, beta: float, period: float | None = 
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ValueError(f"{name}: the fragility's {what} must be a finite number > 0, "
                              f"got {v!r}")
+    if im == "sa" and not (isinstance(period, (int, float)) and math.isfinite(period)
+                           and period > 0):
+        raise ValueError(f"{name}: a fragility in Sa needs its period > 0 [s], got "
+                         f"{period!r}")
     return FragilityCurve(im, float(median), float(beta), period, name)
 
 
@@ -528,10 +534,12 @@ def _integrand(hazard: HazardCurve, frag: FragilityCurve):
     terms of Eq. (11.36) on the grid of :func:`collapse_rate`."""
     lx0, lx1 = math.log(hazard.x[0]), math.log(hazard.x[-1])
     lt, b = math.log(frag.median), frag.beta
-    step = b / STEPS_PER_BETA
     lo, hi = min(lx0, lt - Z_SPAN * b), max(lx1, lt + Z_SPAN * b)
-    grid = np.union1d(np.log(hazard.x),
-                      np.linspace(lo, hi, int(math.ceil((hi - lo) / step)) + 1))
+    # steps of β/200 where P varies; outside, P is 0 or 1 to 1e-15 and the exact
+    # decrements of H need no fine step (a coarse grid for the density's plot)
+    fine = np.linspace(lt - Z_SPAN * b, lt + Z_SPAN * b, 2 * int(Z_SPAN * STEPS_PER_BETA) + 1)
+    coarse = np.linspace(lo, hi, int(math.ceil((hi - lo) * COARSE_PER_LN)) + 1)
+    grid = np.union1d(np.log(hazard.x), np.union1d(fine, coarse))
     h = hazard.rate_at(np.exp(grid))
     mid = 0.5 * (grid[:-1] + grid[1:])
     part = frag.probability(np.exp(mid)) * (h[:-1] - h[1:])  # P |dH| per step
