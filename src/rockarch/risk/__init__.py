@@ -1,5 +1,4 @@
-"""From spectra to risk: incremental dynamic analysis, fragility curves and the annual
-frequency of collapse at a site.
+"""From spectra to risk: IDA, fragility curves and the annual frequency of collapse.
 
 Theory: docs/theory.md §11.3 (IDA, the search for collapse islands, censored lognormal fit),
 §11.5 (hazard curve, annual frequency of collapse, deaggregation).
