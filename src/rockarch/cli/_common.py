@@ -50,6 +50,13 @@ def print_json(obj: Any) -> None:
     sys.stdout.flush()
 
 
+def write_json(path, obj: Any) -> None:
+    """Write one JSON object to ``path`` atomically, as :func:`print_json` prints it."""
+    from rockarch.core.paths import write_text
+
+    write_text(path, json.dumps(_clean(obj)) + "\n")
+
+
 def fail(message: str) -> None:
     """Print one clear line on stderr and exit with status 2."""
     typer.echo(f"error: {message}", err=True)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import typer
@@ -28,8 +29,9 @@ from rockarch.cli._common import (
 from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import _print_table, ida_sweep_options
+from rockarch.cli.risk import RISK, check_years, hazard_of
 from rockarch.core.validate import in_range, positive
-from rockarch.design import design_check, design_system
+from rockarch.design import design_check, design_system, site_risk, smallest_thickness
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
 from rockarch.output.fragility_plots import fragility_html
@@ -111,6 +113,7 @@ def site_oas(
              "--system at a site.")
 @guarded
 @options(MDOF, before="system")
+@options(RISK, before="save_site")
 @options(SWEEP)
 def design(
     system: System = typer.Option(None, help="Any structure instead of the arch's "
@@ -145,7 +148,15 @@ def design(
     pga: float = typer.Option(None, help="With --records: probability of collapse at this "
                               "PGA [m/s²]."),
     probability: float = typer.Option(None, help="With --records: the PGA at this "
-                                      "probability of collapse (default 0.1)."),
+                                      "probability of collapse given the PGA (default "
+                                      "0.1). With --hazard: the target probability of "
+                                      "collapse in --years N years: the largest scale of "
+                                      "the site's hazard (and, for the arch, the smallest "
+                                      "thickness) that meets it."),
+    hazard: Path = typer.Option(None, "--hazard", help="With --records: the site's hazard "
+                                "curve in PGA (as `rockarch risk --hazard`): the annual "
+                                "frequency of collapse and the probability of collapse in "
+                                "--years N years."),
     save_site: Path = typer.Option(None, help="With --records: also write the site OAS "
                                    "computed on the fly (NetCDF, reusable as --site)."),
     thickness_rule: str = typer.Option(None, help="Replacement catenary thickness: "
@@ -180,7 +191,6 @@ def design(
     replacement_axis = replacement_axis or "catenary"
     replacement_mass = replacement_mass or "own"
     percentile = 50.0 if percentile is None else percentile
-    probability = 0.1 if probability is None else probability
     unused = [k for k in _SYSTEM_ONLY if args[k] is not None]
     shape, span, rise, thickness = (opts[k] for k in ("shape", "span", "rise", "thickness"))
     if unused:
@@ -193,6 +203,7 @@ def design(
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
     check_outputs((report, "--report", "html"), (save_site, "--save-site", "netcdf"))
+    site_hazard = _hazard(args, bool(records))
     if records:
         suite = read_records(records, units)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
@@ -219,13 +230,27 @@ def design(
                                      alpha=float(site_ds.attrs["alpha"]), names=suite.names,
                                      ratio=site_ds["ratio"].values)
         except fr.TooFewCollapses as exc:  # the safe PGA is still the answer
+            if site_hazard is not None:
+                raise ValueError(f"--hazard needs the records' fragility: {exc}") from None
             echo_err(f"warning: {exc}; no fragility")
             frag, extra = None, {"fragility": None, "note": str(exc)}
         if frag is not None:
-            extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability,
-                                                   g=g)
+            extra["fragility"] = fr.design_summary(frag, pga=pga,
+                                                   probability=_conditional(args), g=g)
             if report is not None:
                 html_extra = fragility_html(frag, extra["fragility"], suite)
+    if site_hazard is not None:
+        years, extrapolate = args["years"], args["extrapolate"]
+        risk = site_risk(frag.fit, site_hazard, years=years, probability=probability,
+                         extrapolate=extrapolate)
+        if probability is not None:
+            d, trials = smallest_thickness(
+                arch, suite.motions, site_hazard, probability, years=years,
+                alpha=float(site_ds.attrs["alpha"]), ratio=site_ds["ratio"].values,
+                rule=thickness_rule, axis=replacement_axis, mass=replacement_mass, g=g,
+                extrapolate=extrapolate)
+            risk = replace(risk, thickness=d, trials=trials)
+        extra["risk"] = risk.to_dict()
     if report is not None:
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} "
@@ -257,6 +282,8 @@ def design(
             if key in f:
                 typer.echo(f"  P(collapse) = {f[key]['probability']:.3g} at PGA "
                            f"{f[key]['pga']:.3f} m/s²")
+    if site_hazard is not None:
+        _print_risk(risk)
     if report is not None:
         typer.echo(f"wrote {report}")
 
@@ -281,6 +308,55 @@ def _check_design_inputs(opt: dict, records: list[Path]) -> None:
         in_range("--probability", opt["probability"], 0.0, 1.0, lo_open=True, hi_open=True)
     if opt["percentile"] is not None:
         in_range("--percentile", opt["percentile"], 0.0, 100.0)
+
+
+def _hazard(opt: dict, records: bool):
+    """The hazard curve of design --hazard (None without it); --probability's meaning
+    follows (docs/sites.md, "Risk")."""
+    for name in ("site_row", "extrapolate"):
+        if opt[name] not in (None, False) and opt["hazard"] is None:
+            raise ValueError(f"--{name.replace('_', '-')} goes with --hazard FILE")
+    if opt["hazard"] is None:
+        if opt["years"] != 50.0:
+            raise ValueError("--years goes with --hazard FILE (the probability of collapse "
+                             "in N years at the site)")
+        return None
+    if not records:
+        raise ValueError("--hazard needs --records: the fragility comes from the records' "
+                         "IDA (a site file holds no fragility)")
+    check_years(opt["years"])
+    if opt["probability"] is not None and not 0 < opt["probability"] < 1:
+        raise ValueError(f"--probability must lie in (0, 1), got {opt['probability']}")
+    curve = hazard_of(opt["hazard"], opt["site_row"])
+    if curve.im != "pga":
+        raise ValueError(f"the design's fragility is in PGA: give a PGA hazard curve "
+                         f"({opt['hazard']} is in {curve.label}; `rockarch risk` takes any "
+                         "IM)")
+    return curve
+
+
+def _conditional(opt: dict) -> float | None:
+    """--probability as the design summary's P(collapse | PGA): default 0.1; none with
+    --hazard (there it is the target in --years)."""
+    if opt["hazard"] is not None:
+        return None
+    return 0.1 if opt["probability"] is None else opt["probability"]
+
+
+def _print_risk(risk) -> None:
+    r, c = risk.result, risk.hazard
+    typer.echo(f"risk at the site of {Path(c.source).name} ({c.label} {c.x[0] / c.factor:.4g} … "
+               f"{c.x[-1] / c.factor:.4g} {c.units}): annual frequency of collapse "
+               f"{r.annual_rate:.3g} /yr, P(collapse in {r.years:g} years) = "
+               f"{r.probability:.3g}")
+    if risk.target is not None:
+        typer.echo(f"  P(collapse in {r.years:g} years) <= {risk.target:g} up to "
+                   f"{risk.scale:.3g} x the site's hazard (ground motions "
+                   f"{risk.scale:.3g} times as strong)")
+    if risk.thickness is not None:
+        typer.echo(f"  P(collapse in {r.years:g} years) <= {risk.target:g} at the site's "
+                   f"hazard from a thickness of {risk.thickness:.3f} m "
+                   f"({len(risk.trials)} thicknesses tried, bisection to 1 %)")
 
 
 #: design options of --system only (the arch design by the replacement catenary refuses them).
@@ -309,10 +385,10 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          blocks=opt["blocks"], mass_ratio=opt["mass_ratio"],
                          delta=opt["delta"], ap_min=opt["ap_min"], g=opt["g"],
                          t_free=opt["t_free"], **mdof_structure(opt))
+    site_hazard = _hazard(opt, bool(records))
     kw = {"curve": opt["curve"],
           "percentile": 50.0 if opt["percentile"] is None else opt["percentile"],
-          "g": opt["g"], "pga": opt["pga"],
-          "probability": 0.1 if opt["probability"] is None else opt["probability"]}
+          "g": opt["g"], "pga": opt["pga"], "probability": _conditional(opt)}
     suite = None
     if opt["site_file"] is not None:
         res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
@@ -335,12 +411,21 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     if res.ratio_is_lower_bound:
         echo_err("warning: the site curve does not collapse the structure within the ratio "
                  "range; the safe PGA is a lower bound")
+    risk = None
+    if site_hazard is not None:
+        if res.fragility is None or res.fragility.fit is None:
+            raise ValueError("--hazard needs a fragility: fewer than two records collapse "
+                             "(raise --ratio-max)")
+        risk = site_risk(res.fragility.fit, site_hazard, years=opt["years"],
+                         probability=opt["probability"], extrapolate=opt["extrapolate"])
     if opt["report"] is not None:
         write_system_report(res, opt["report"], command=_command_line(opt), suite=suite)
     if json_out:
-        print_json(res.to_dict())
+        print_json(res.to_dict() | ({} if risk is None else {"risk": risk.to_dict()}))
         return
     _print_system_design(res)
+    if risk is not None:
+        _print_risk(risk)
     if opt["report"] is not None:
         typer.echo(f"wrote {opt['report']}")
 

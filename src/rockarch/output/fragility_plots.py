@@ -12,9 +12,11 @@ from rockarch.risk.fragility import Fragility
 
 #: Units of each intensity measure in g (the CLI's --im-range), by which it is divided.
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
-           "pgv": ("PGV [m/s]", 1.0)}
+           "pgv": ("PGV [m/s]", 1.0), "pga_norm": ("PGA/(g tan α) [-]", 1.0),
+           "pgv_norm": ("PGV·p/(g tan α) [-]", 1.0)}
 #: SI label of each intensity measure: the fragility figure's axis, as --json gives it.
-SI_LABEL = {"pga": "PGA [m/s²]", "sa": "Sa(T) [m/s²]", "pgv": "PGV [m/s]"}
+SI_LABEL = {"pga": "PGA [m/s²]", "sa": "Sa(T) [m/s²]", "pgv": "PGV [m/s]",
+            "pga_norm": "PGA/(g tan α) [-]", "pgv_norm": "PGV·p/(g tan α) [-]"}
 
 
 def display_units(im: str) -> tuple[str, float]:
