@@ -4,7 +4,8 @@ scan: simulations and CPU saved, safe islands missed, collapse points (must be i
 Run:  .venv/bin/python benchmarks/ida_scan.py [--steps 2,4,8] [--mdof-records 10]
 
 * blocks (alpha, p) = (0.1, 2), (0.2, 1), (0.15, 3) over the 50 synthetic records of
-  seed 1 and both El Centro components, the default grid (81 ratios 1 ... 5, tol 1e-3);
+  seed 1 and both El Centro components, the default grid (81 ratios 1 ... 5, tol 1e-3),
+  the grid alone (no search below its first collapse: ``search_step=0``);
 * the 20-voussoir circular arch of benchmarks/fragility_mdof.py at its p over every 5th of
   the 50 synthetic records of seed 1, 17 ratios 1 ... 5, tol 0.01.
 
@@ -59,7 +60,7 @@ def main() -> None:
         motions = suite + [ra.el_centro(180), ra.el_centro(270)]
         for alpha, p in ((0.1, 2.0), (0.2, 1.0), (0.15, 3.0)):
             compare(f"block alpha={alpha:g} p={p:g}, {len(motions)} records",
-                    ra.system("block", alpha=alpha), motions, p, steps)
+                    ra.system("block", alpha=alpha), motions, p, steps, search_step=0)
     if args.mdof_records:
         arch = ra.system("mdof", shape="circular", rise_over_span=0.5,
                          thickness_over_span=0.15, blocks=20)

@@ -46,3 +46,17 @@ def _unperturbed(request):
         yield
     finally:
         rockarch_perturb.ENABLED = True
+
+
+@pytest.fixture(scope="session")
+def short_records(tmp_path_factory):
+    """The first 12 s of both bundled El Centro components (the strong motion) as .AT2
+    files in one folder: the fragility and risk commands' checks, fast."""
+    import rockarch as ra
+    from rockarch.motion.suite import write_at2
+
+    d = tmp_path_factory.mktemp("short")
+    for c in (180, 270):
+        m = ra.el_centro(c)
+        write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
+    return d

@@ -27,7 +27,7 @@ def records():
 ])
 def test_ida_collapse_is_the_oas_boundary_times_ap_min(records, kind, kw, p):
     sys_ = ra.system(kind, **kw)
-    res = fr.ida(sys_, records, p, ratio=RATIO)
+    res = fr.ida(sys_, records, p, ratio=RATIO, search_step=0)
     for k, m in enumerate(records):
         ds = ra.oas(sys_, m, p=[p], ratio=RATIO)
         # same grid, same bisection, same simulations: bit-identical, not just close
@@ -42,7 +42,7 @@ def test_ida_collapse_is_the_oas_boundary_times_ap_min(records, kind, kw, p):
 def test_ida_censors_records_safe_up_to_the_scan_limit(records):
     sys_ = ra.system("block", alpha=0.2, t_free=3.0)
     res = fr.ida(sys_, records[:1], 2.0, ratio=[0.5, 0.8, 1.0])
-    assert res.censored.tolist() == [True]
+    assert res.censored.tolist() == [True] and res.search_step == 0.0025
     assert res.im_limit[0] == pytest.approx(1.0 * sys_.ap_min)
 
 
@@ -218,10 +218,11 @@ def test_adaptive_scan_finds_islands_from_every_kth_value():
     grid = RATIO
     safe_above = {3.0, 3.25, 4.25, 5.0}
     sys_ = _Pattern(tuple(r for r in grid if r >= 2.0 and r not in safe_above))
-    full = fr.ida(sys_, [_motion("a")], 1.0, ratio=grid, tol=0.0)
+    full = fr.ida(sys_, [_motion("a")], 1.0, ratio=grid, tol=0.0, search_step=0)
     assert full.resurrections.tolist() == [3] and full.evaluated.all()
     RUNS.clear()
-    res = fr.ida(sys_, [_motion("a")], 1.0, ratio=grid, tol=0.0, island_step=4)
+    res = fr.ida(sys_, [_motion("a")], 1.0, ratio=grid, tol=0.0, island_step=4,
+                 search_step=0)
     assert res.ratio_collapse[0] == full.ratio_collapse[0] == 2.0
     run = grid[res.evaluated[0]]
     # every value up to the first collapse (a batch of numba threads may run a few more),
@@ -242,6 +243,8 @@ def test_adaptive_scan_keeps_every_collapse_point(records):
     full = fr.ida(sys_, records, 2.0, ratio=grid)
     assert full.evaluated.all()
     for step in (2, 5):
+        # the search runs after the grid's scan, from its first collapse down: the same
+        # first collapse whatever the scan above it
         res = fr.ida(sys_, records, 2.0, ratio=grid, island_step=step)
         # the same values up to the first collapse, the same bisection: bit-identical
         assert np.array_equal(res.ratio_collapse, full.ratio_collapse)
@@ -287,3 +290,85 @@ def test_ida_on_worker_processes_is_bit_identical(records):
             assert np.array_equal(res.ratio_collapse, ref.ratio_collapse)
             ev = res.evaluated
             assert np.array_equal(res.overturned[ev], ref.overturned[ev])
+
+
+# --------------------------------------------------------------------------- collapse islands
+
+
+def test_search_finds_a_collapse_island_narrower_than_the_grid():
+    # grid 1 … 5 step 0.25; the structure collapses on the grid from 2.5 and on one value
+    # of the search, 1.6 (= 1 + 240·0.0025), alone: an island narrower than the grid
+    sys_ = _Pattern((1.6, *RATIO[RATIO >= 2.5]))
+    RUNS.clear()
+    res = fr.ida(sys_, [_motion("a")], 1.0, ratio=RATIO, tol=0.0)
+    assert res.ratio_collapse[0] == 1.6 and res.im_collapse[0] == 1.6
+    # the grid values 1.75, 2.0, 2.25 above it are safe: one resurrection
+    assert res.resurrections.tolist() == [1]
+    # the search stops at the first collapse: the grid, then batches of at most
+    # SEARCH_BATCH·threads values from 1.0025 up to 1.6 (239 values off the grid)
+    import numba
+
+    from rockarch.risk.record_scan import SEARCH_BATCH
+
+    assert sum(RUNS) <= RATIO.size + 239 + SEARCH_BATCH * numba.get_num_threads()
+    # without the search: the grid's first collapse, the island missed
+    off = fr.ida(sys_, [_motion("a")], 1.0, ratio=RATIO, tol=0.0, search_step=0)
+    assert off.ratio_collapse[0] == 2.5 and off.resurrections.tolist() == [0]
+    # an island narrower than the search step between two of its values is missed
+    narrow = _Pattern((1.6012, *RATIO[RATIO >= 2.5]))
+    assert fr.ida(narrow, [_motion("a")], 1.0, ratio=RATIO, tol=0.0).ratio_collapse[0] == 2.5
+    # a coarser search step given by the caller: 1.6 is on the grid 1 + 0.1k too
+    assert fr.ida(sys_, [_motion("a")], 1.0, ratio=RATIO, tol=0.0,
+                  search_step=0.1).ratio_collapse[0] == 1.6
+    with pytest.raises(ValueError, match="search step must be a finite number >= 0"):
+        fr.ida(sys_, [_motion("a")], 1.0, ratio=RATIO, search_step=-0.1)
+
+
+def test_first_collapse_is_that_of_the_fine_scan_below_it(records):
+    # a real block: every value 1 + 0.0025k below the collapse point is safe, and the
+    # collapse point lies within one search step below a collapse (bisection to tol)
+    sys_ = ra.system("block", alpha=0.1, t_free=3.0)
+    res = fr.ida(sys_, records, 2.0, ratio=RATIO)
+    coarse = fr.ida(sys_, records, 2.0, ratio=RATIO, search_step=0)
+    for k, m in enumerate(records):
+        x = res.ratio_collapse[k]
+        assert x <= coarse.ratio_collapse[k]
+        fine = np.round(1 + 0.0025 * np.arange(int((x - 1) / 0.0025) + 2), 12)
+        over, _ = sys_.run(m, np.full(fine.size, 2.0), fine)
+        first = fine[np.argmax(over)]
+        assert over.any() and not over[fine < x].any()
+        assert first - 0.0025 < x <= first
+
+
+def test_el_centro_270_overturns_the_block_on_its_narrow_island():
+    # issue 24: block alpha = 0.1, p = 2 on El Centro 270: the fine scan (step 0.0025 of
+    # ap/ap,min, and an independent engine) overturns it first at PGA 1.4075 m/s2 (ratio
+    # 1.43, an island ~0.015 wide); the 81-value grid alone first at 1.543 m/s2 (9.6 %
+    # higher). The default scan must be within 1 % of the fine scan (the issue's bound)
+    sys_ = ra.system("block", alpha=0.1)
+    res = fr.ida(sys_, [ra.el_centro(270)], 2.0)
+    assert res.im_collapse[0] == pytest.approx(1.4075, rel=0.01)
+    coarse = fr.ida(sys_, [ra.el_centro(270)], 2.0, search_step=0)
+    assert coarse.im_collapse[0] > 1.09 * 1.4075
+    assert res.resurrections[0] > coarse.resurrections[0]
+
+
+@pytest.mark.slow  # ~60 s: a fine scan of 22 records
+def test_default_scan_is_within_1_percent_of_the_fine_scan_on_95_percent_of_records():
+    # issue 24's acceptance: with default options every record's first collapse within
+    # 1 % of a fine scan (ratio 1 … 10 every 0.0025, no bisection) on >= 95 % of a suite:
+    # the bundled records and 20 synthetic ones (seed 7, not a seed the scheme was tuned
+    # on). A record censored by the default scan (no collapse up to 5) agrees if the
+    # fine scan does not collapse up to 5 either.
+    sys_ = ra.system("block", alpha=0.1)
+    motions = [ra.el_centro(180), ra.el_centro(270),
+               *ra.synthetic_suite(20, seed=7).motions]
+    res = fr.ida(sys_, motions, 2.0)
+    fine = np.round(np.linspace(1.0, 10.0, 3601), 12)
+    agree = []
+    for k, m in enumerate(motions):
+        over, _ = sys_.run(m, np.full(fine.size, 2.0), fine)
+        first = fine[np.argmax(over)] if over.any() else np.inf
+        x = res.ratio_collapse[k]
+        agree.append(abs(x / first - 1) <= 0.01 if np.isfinite(x) else first > 5.0)
+    assert np.mean(agree) >= 0.95, agree

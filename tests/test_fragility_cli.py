@@ -23,16 +23,9 @@ def full(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def folder(tmp_path_factory):
-    """Their first 12 s (the strong motion) as .AT2 files: the same checks, faster."""
-    import rockarch as ra
-    from rockarch.motion.suite import write_at2
-
-    d = tmp_path_factory.mktemp("short")
-    for c in (180, 270):
-        m = ra.el_centro(c)
-        write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
-    return d
+def folder(short_records):
+    """The first 12 s of both El Centro components (tests/conftest.py)."""
+    return short_records
 
 
 @pytest.mark.slow
@@ -48,14 +41,16 @@ def _check_contract(folder, tmp_path):
     png = tmp_path / "f.png"
     res = runner.invoke(app, ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2",
                               "--records", str(folder), "--im", "pga", "--no-store",
-                              "--json", "--bootstrap", "50", "--plot", str(png)])
+                              "--json", "--bootstrap", "50", "--plot", str(png),
+                              "--search-step", "0"])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
-    assert out["im"] == "pga"
+    assert out["im"] == "pga" and out["search_step"] == 0
     names = [q["record"] for q in out["points"]]
     assert names == sorted(p.name for p in folder.iterdir())
     assert png.stat().st_size > 1000
-    # each collapse point is the `rockarch oas` boundary at p = 2 times ap,min (m/s²)
+    # without the search, each collapse point is the `rockarch oas` boundary at p = 2
+    # times ap,min (m/s²)
     rec = folder / names[0]
     oas = runner.invoke(app, ["oas", "--system", "block", "--alpha", "0.1", "--p", "2",
                               "--record", str(rec), "--no-store", "--json"])
@@ -74,7 +69,10 @@ def _check_contract(folder, tmp_path):
 
 @pytest.mark.parametrize("extra, msg", [
     (["--im", "sa"], "--im sa needs --period"),
-    (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa'"),
+    (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa', 'pga_norm', 'pgv_norm', "
+                      "'all'"),
+    (["--search-step", "-1"], "search step must be a finite number >= 0"),
+    (["--im", "all", "--plot", "x.png"], "--im all prints a table of every IM"),
     (["--im-range", "5,1"], "--im-range must be two numbers"),
     (["--ratio-steps", "1"], "--ratio-steps must be >= 2"),
     (["--island-step", "0"], "island step must be an integer >= 1"),
@@ -85,9 +83,9 @@ def _check_contract(folder, tmp_path):
     (["--alpha", "-1"], "alpha"),
     (["--im", "sa", "--period", "-1"], "--period must be a finite number > 0"),
     (["--im-range", "0.1,x"], "--im-range"),
-    (["--bootstrap", "-1"], "--bootstrap must be >= 0"),
+    (["--bootstrap", "-1"], "--bootstrap must lie in [0, 10000]"),
     (["--records", "/nonexistent/folder"], "no such file or folder"),
-    (["--system", "sdof", "--delta", "0.1"], "--system sdof needs --ap-min"),
+    (["--system", "sdof", "--delta", "0.1"], "--alpha does not apply to --system sdof"),
 ])
 def test_bad_input_is_one_line(folder, extra, msg):
     res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
@@ -163,3 +161,32 @@ def test_mdof_structure_options(folder):
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     assert out["system"] == "2-block column" and len(out["points"]) == 2
+
+
+def test_im_all_reports_the_dispersion_of_every_im_on_one_ida(folder):
+    res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                              str(folder), "--no-store", "--im", "all", "--json",
+                              "--bootstrap", "0"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    rows = {r["im"]: r for r in out["ims"]}
+    assert list(rows) == ["pga", "pgv", "sa", "pga_norm", "pgv_norm"]
+    import math
+
+    assert rows["sa"]["period"] == pytest.approx(2 * math.pi / 2)
+    # the dimensionless IMs are PGA and PGV times constants on one structure: the same
+    # beta (the MLE is scale-equivariant) and medians scaled by g tan(alpha), p/(g tan alpha)
+    ap_min = out["ap_min"]
+    assert rows["pga_norm"]["beta"] == pytest.approx(rows["pga"]["beta"], rel=1e-9)
+    assert rows["pga_norm"]["median"] == pytest.approx(rows["pga"]["median"] / ap_min)
+    assert rows["pgv_norm"]["median"] == pytest.approx(rows["pgv"]["median"] * 2 / ap_min)
+    # the same IDA as `--im pga`, and `--im pgv` gives the same fit as the pgv row
+    one = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                              str(folder), "--no-store", "--im", "pgv", "--json",
+                              "--bootstrap", "0"])
+    pgv = json.loads(one.stdout)
+    assert pgv["median"] == pytest.approx(rows["pgv"]["median"], rel=1e-12)
+    assert pgv["beta"] == pytest.approx(rows["pgv"]["beta"], rel=1e-12)
+    text = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                               str(folder), "--no-store", "--im", "all", "--bootstrap", "0"])
+    assert "Sa(T = 3.14 s)" in text.stdout and "lowest beta:" in text.stdout

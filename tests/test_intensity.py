@@ -152,7 +152,7 @@ def test_measures_of_el_centro_and_im_value():
 @pytest.mark.parametrize("call, match", [
     (lambda m: im.im_value(m, "sa"), "needs a period"),
     (lambda m: im.im_value(m, "cav"), "unknown intensity measure"),
-    (lambda m: im.spectral_acceleration(m, [0.0]), "periods must be > 0"),
+    (lambda m: im.spectral_acceleration(m, [0.0]), "periods of Sa.T. must lie in"),
     (lambda m: im.spectral_acceleration(m, [1.0], damping=1.0), "damping"),
     (lambda m: im.significant_duration(m, 0.9, 0.1), "lower fraction < upper"),
     (lambda m: im.pgd(m, order=9), "baseline order"),

@@ -37,7 +37,8 @@ def examples(path: Path) -> list[tuple[list[str], str, float]]:
 
 EXAMPLES = examples(README)
 #: Files and folders that one example writes and others read.
-WRITTEN = {"site.nc": ["site-oas"], "synth/": ["records", "synth"]}
+WRITTEN = {"site.nc": ["site-oas"], "synth/": ["records", "synth"],
+           "fragility.json": ["fragility"]}
 #: Quick examples that need no file written by another one (``design --site site.nc``).
 QUICK = [e for e in EXAMPLES if e[2] <= 3
          and not any(f in e[0] and e[0][:len(w)] != w for f, w in WRITTEN.items())]

@@ -3,7 +3,14 @@
 import numpy as np
 import pytest
 
-from rockarch.motion.records import G_STANDARD, el_centro, read_at2, read_record, read_two_column
+from rockarch.motion.records import (
+    G_STANDARD,
+    UnitsWarning,
+    el_centro,
+    read_at2,
+    read_record,
+    read_two_column,
+)
 
 NEW = """PEER NGA STRONG MOTION DATABASE RECORD
 Test event, 1/1/2000, Station, 90
@@ -49,7 +56,9 @@ def test_two_column_units_and_header(tmp_path):
     f = _write(tmp_path, "rec.txt", "time acc\n0.0 0.1\n0.01, 0.2\n0.02\t-0.3\n0.03 0.0\n")
     m = read_two_column(f, units="g")
     assert m.a[2] == pytest.approx(-0.3 * G_STANDARD)
-    assert read_record(f).a[2] == pytest.approx(-0.3)  # m/s2 by default
+    # m/s2 by default, with a warning: a peak of 0.3 is plausible in g too
+    with pytest.warns(UnitsWarning, match="plausible PGA in g"):
+        assert read_record(f).a[2] == pytest.approx(-0.3)
 
 
 @pytest.mark.parametrize(
@@ -110,3 +119,19 @@ def test_binary_and_unknown_units(tmp_path):
         read_record(f.rename(tmp_path / "r.AT2"))
     with pytest.raises(ValueError, match="unknown acceleration unit 'furlong'"):
         read_two_column(_write(tmp_path, "s.txt", "0 1\n0.01 2\n"), units="furlong")
+
+
+def test_two_column_with_a_byte_order_mark_keeps_its_first_sample(tmp_path):
+    f = tmp_path / "bom.txt"
+    f.write_bytes(b"\xef\xbb\xbf0 0.1\n0.01 0.2\n0.02 -0.3\n")
+    a = read_record(f, units="m/s2").a
+    # the three samples as written (to their last bit: make test-perturbed moves it)
+    assert a.size == 3 and a == pytest.approx([0.1, 0.2, -0.3], rel=1e-15)
+
+
+def test_two_column_without_units_warns_on_an_implausible_pga(tmp_path):
+    """A file in mm/s² read as m/s² (PGA 3e5 m/s²): one warning naming the units to give."""
+    f = _write(tmp_path, "mm.txt", "0 1e5\n0.01 2e5\n0.02 -3e5\n")
+    with pytest.warns(UnitsWarning, match="not plausible: wrong units"):
+        read_record(f)
+    assert read_record(f, units="mm/s2").pga == pytest.approx(300.0)

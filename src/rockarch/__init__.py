@@ -24,6 +24,7 @@ _jit_cache.use_digest_cache()  # before any numba kernel is defined
 from rockarch.arch.geometry import make_arch  # noqa: E402
 from rockarch.core.constants import G  # noqa: E402
 from rockarch.core.response import Batch, Response  # noqa: E402
+from rockarch.core.validate import number as _number  # noqa: E402
 from rockarch.design import design_system  # noqa: E402
 from rockarch.motion.records import el_centro, read_record  # noqa: E402
 from rockarch.motion.signals import SIGNALS, GroundMotion, pulse  # noqa: E402
@@ -48,9 +49,14 @@ def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
     The same computation as ``rockarch oas`` (which passes the same grids); see
     :func:`rockarch.spectra.oas.compute_oas` for the executor and store options.
     """
-    kw = {} if tol is None else {"tol": tol}
-    return _compute_oas(sys_, motion, p, ratio, progress=progress, executor=executor,
-                        store=store, **kw)
+    from rockarch.core.validate import numbers
+    from rockarch.systems import check_motion, check_system
+
+    check_system(sys_)
+    check_motion(motion)
+    kw = {} if tol is None else {"tol": _number("tol", tol)}
+    return _compute_oas(sys_, motion, numbers("p", p), numbers("ratio", ratio),
+                        progress=progress, executor=executor, store=store, **kw)
 
 
 __all__ = ["G", "KINDS", "SIGNALS", "Batch", "GroundMotion", "Response", "Suite", "__version__",

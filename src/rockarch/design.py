@@ -1,7 +1,8 @@
 """Design checks: the largest safe PGA of a structure at a site.
 
 Theory: docs/theory.md §7 (replacement catenary arch, Eq. 7.2), §11.4 (design of any
-structure, Eqs. 11.34–11.35).
+structure, Eqs. 11.34–11.35), §11.5 (the annual frequency of collapse at a site and its
+inverse, Eqs. 11.36–11.42).
 
 - An arch by the paper's method (Sect. 9, Fig. 20; docs/theory.md §7), :func:`design_check`:
   the arch is replaced by a catenary arch (:mod:`rockarch.arch.replacement`), whose
@@ -11,10 +12,14 @@ structure, Eqs. 11.34–11.35).
 - Any system (block, mechanism, MDOF assembly with friction), :func:`design_system`: its
   own ap,min (friction-aware limit analysis) and either its own IDA over the records
   (Eq. (11.34)) or a slender block's site OAS read at its p (Eq. (11.35)).
+- With a site's hazard curve, :func:`site_risk`: the annual frequency of collapse of the
+  fragility found, the probability of collapse in N years and the largest scale of the
+  hazard that meets a target; :func:`smallest_thickness`: the thinnest arch that meets it.
 """
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,9 +28,12 @@ import xarray as xr
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
 from rockarch.core.constants import OAS_TOL, G
-from rockarch.core.validate import positive
+from rockarch.core.validate import in_range, integer, positive
+from rockarch.motion.signals import GroundMotion
 from rockarch.risk import fragility as fr
+from rockarch.risk import hazard as hz
 from rockarch.spectra import site as site_mod
+from rockarch.systems import check_system
 
 
 @dataclass(frozen=True)
@@ -173,12 +181,30 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
         :func:`rockarch.risk.fragility.design_summary`.
     executor, store, progress : as in :func:`rockarch.spectra.oas.compute_oas`.
     """
+    check_system(system, "system")
+    if site is not None and not isinstance(site, xr.Dataset):
+        raise TypeError(f"site must be a site OAS (xarray.Dataset of rockarch.spectra.site."
+                        f"load), got {type(site).__name__}")
+    if records is not None and (isinstance(records, (str, bytes, os.PathLike))
+                                or not all(isinstance(m, GroundMotion)
+                                           for m in getattr(records, "motions", records))):
+        raise TypeError("records must be a Suite (ra.read_suite) or a list of GroundMotion, "
+                        f"got {type(records).__name__}")
     if curve not in SYSTEM_CURVES:
         raise ValueError(f"the site curve of a structure's design must be one of "
                          f"{', '.join(SYSTEM_CURVES)}, got {curve!r}")
     if (records is None) == (site is None):
         raise ValueError("give either records or a site OAS")
     g = positive("g", g)
+    # the fragility's numbers before the IDA (minutes) rather than after it
+    if pga is not None:
+        positive("pga [m/s²]", pga)
+    if probability is not None:
+        in_range("probability", probability, 0.0, 1.0, lo_open=True, hi_open=True)
+    in_range("percentile", percentile, 0.0, 100.0)
+    in_range("level", level, 0.0, 1.0, lo_open=True, hi_open=True)
+    if not 0 <= integer("n_bootstrap", n_bootstrap) <= fr.MAX_BOOTSTRAP:
+        raise ValueError(f"n_bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got {n_bootstrap}")
     p, sliding, rock = _structure(system, p)
     ap_min = float(system.ap_min)
     common = {"system": system.name, "p": p, "ap_min": ap_min, "curve": curve, "g": g,
@@ -194,8 +220,6 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
                             pga_safe=r * ap_min,
                             percentile=float(site.attrs.get("percentile", 50.0)),
                             **common)
-    if not 0.0 <= float(percentile) <= 100.0:
-        raise ValueError(f"percentile must lie in [0, 100], got {percentile}")
     names = getattr(records, "names", names)
     motions = getattr(records, "motions", records)
     res = fr.ida(system, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
@@ -211,3 +235,123 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     return SystemDesign(method="records", ratio=r, ratio_is_lower_bound=lower,
                         pga_safe=r * ap_min, percentile=float(percentile), fragility=frag,
                         summary=summary, note=note, **common)
+
+
+# --------------------------------------------------------------------------- risk
+
+
+@dataclass(frozen=True)
+class SiteRisk:
+    """The annual frequency of collapse of a designed structure at a site and, given a
+    target probability of collapse in N years, the inverse (docs/theory.md Sect. 11.5):
+    the largest scale of the site's hazard (Eq. (11.42)) and, for an arch, the smallest
+    thickness with P(collapse in N years) ≤ the target.
+
+    ``trials`` are the (thickness [m], P in N years) pairs the thickness search ran.
+    """
+
+    result: hz.RiskResult
+    hazard: hz.HazardCurve
+    fragility: hz.FragilityCurve
+    target: float | None = None
+    scale: float | None = None
+    thickness: float | None = None
+    trials: tuple = ()
+
+    def to_dict(self) -> dict:
+        """The ``risk`` object of ``rockarch design --hazard --json``: ``annual_rate``
+        [1/yr], ``probability``, ``years``, the deaggregation (IM in the hazard file's
+        units), and with a target ``target_probability``, ``largest_scale`` and (arches)
+        ``smallest_thickness`` [m] with its ``trials``."""
+        out = {**self.result.to_dict(self.hazard.factor, self.hazard.units),
+               "hazard": self.hazard.source, "median": self.fragility.median,
+               "beta": self.fragility.beta}
+        if self.target is not None:
+            out.update(target_probability=self.target, largest_scale=self.scale)
+        if self.thickness is not None:
+            out.update(smallest_thickness=self.thickness,
+                       trials=[{"thickness": d, "probability": q} for d, q in self.trials])
+        return out
+
+
+def site_risk(fit, hazard: hz.HazardCurve, *, years: float = 50.0,
+              probability: float | None = None, extrapolate: bool = False) -> SiteRisk:
+    """λ_c and P(collapse in ``years``) of a lognormal PGA fragility ``fit`` (θ, β in
+    m/s², e.g. :class:`rockarch.risk.fragility.LognormalFit`) at a site of hazard curve
+    ``hazard`` (Eqs. (11.36)–(11.37)); with a target ``probability`` the largest scale of
+    the hazard that meets it (Eq. (11.42))."""
+    frag = hz.fragility_curve("pga", fit.median, fit.beta)
+    if hazard.im != "pga":
+        raise ValueError(f"the design's fragility is in PGA: give a PGA hazard curve "
+                         f"({hazard.source} is in {hazard.label})")
+    res = hz.collapse_rate(hazard, frag, years=years, extrapolate=extrapolate)
+    scale = None if probability is None else hz.largest_scale(
+        hazard, frag, probability, years=years, extrapolate=extrapolate)
+    return SiteRisk(res, hazard, frag, probability, scale)
+
+
+def smallest_thickness(arch: Arch, motions, hazard: hz.HazardCurve, probability: float, *,
+                       years: float = 50.0, alpha: float = site_mod.ALPHA, ratio=None,
+                       rule: str = "equivalent", axis: str = "catenary", mass: str = "own",
+                       g: float = G, extrapolate: bool = False, rel_tol: float = 0.01
+                       ) -> tuple[float, tuple]:
+    """The smallest uniform thickness of ``arch``'s shape (same span and rise) whose
+    replacement's fragility (the site's slender block at its p, in units of its ap,min:
+    :func:`rockarch.risk.fragility.site_fragility`) gives P(collapse in ``years``) ≤
+    ``probability`` at the site (Eqs. (7.2), (11.36)–(11.37)).
+
+    From the arch's thickness, steps of ×1.25 bracket the answer (a thickness whose
+    statics fail counts as unsafe), then bisection to ``rel_tol``. P is assumed to fall
+    as the thickness grows (ap,min grows about linearly with d, p hardly changes); the
+    bracket's ends are checked, the points between are not. Returns (thickness [m], the
+    (thickness, P) pairs run).
+    """
+    from rockarch.arch.geometry import make_arch
+
+    target = float(probability)
+    if not 0 < target < 1:
+        raise ValueError(f"a probability of collapse in N years must lie in (0, 1), got "
+                         f"{target}")
+    trials = []
+
+    def prob(d: float) -> float:
+        try:
+            a = make_arch(arch.shape, arch.span, arch.rise, d)
+            chosen = replacement(a, g=g, axis=axis, mass=mass).by_rule(rule)
+        except ValueError:  # too thin for a thrust line: it does not stand
+            trials.append((d, 1.0))
+            return 1.0
+        frag = fr.site_fragility(motions, chosen.p, chosen.ap_min, alpha=alpha, ratio=ratio,
+                                 n_bootstrap=0)
+        q = hz.collapse_rate(hazard, hz.fragility_curve("pga", frag.fit.median,
+                                                        frag.fit.beta),
+                             years=years, extrapolate=True).probability
+        trials.append((d, q))
+        return q
+
+    d0 = float(arch.thickness)
+    lo, hi = (None, d0) if prob(d0) <= target else (d0, None)
+    for _ in range(12):
+        if lo is None:
+            d = hi / 1.25
+            lo, hi = (None, d) if prob(d) <= target else (d, hi)
+        elif hi is None:
+            d = lo * 1.25
+            lo, hi = (lo, d) if prob(d) <= target else (d, None)
+        else:
+            break
+    if lo is None or hi is None:
+        raise ValueError(f"no thickness between {d0 / 1.25 ** 12:.3g} and "
+                         f"{d0 * 1.25 ** 12:.3g} m brackets P(collapse in {years:g} years) "
+                         f"= {target:g}")
+    while hi - lo > rel_tol * hi:
+        d = 0.5 * (lo + hi)
+        lo, hi = (lo, d) if prob(d) <= target else (d, hi)
+    # the answer's coverage of the hazard, as the caller asked (extrapolate or not)
+    a = make_arch(arch.shape, arch.span, arch.rise, hi)
+    chosen = replacement(a, g=g, axis=axis, mass=mass).by_rule(rule)
+    frag = fr.site_fragility(motions, chosen.p, chosen.ap_min, alpha=alpha, ratio=ratio,
+                             n_bootstrap=0)
+    hz.collapse_rate(hazard, hz.fragility_curve("pga", frag.fit.median, frag.fit.beta),
+                     years=years, extrapolate=extrapolate)
+    return hi, tuple(sorted(trials))

@@ -21,6 +21,7 @@ frequency parameter ``p_ref``, and three calls that take the ground motion's *sh
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
@@ -30,7 +31,15 @@ from rockarch import mdof
 from rockarch.arch.geometry import make_arch
 from rockarch.core.constants import EPS_REST, GAP_TOL, MDOF_H_FACTOR, SDOF_H_FACTOR, T_FREE, G
 from rockarch.core.response import Batch, Response
-from rockarch.core.validate import positive
+from rockarch.core.validate import (
+    in_range,
+    integer,
+    number,
+    numbers,
+    positive,
+    ratio_value,
+    show,
+)
 from rockarch.mdof.assembly import Assembly
 from rockarch.motion.signals import GroundMotion
 from rockarch.rocking import mechanism as mc
@@ -53,11 +62,40 @@ KINDS = {
 MIN_FOURHINGE_BLOCKS = 4
 
 
+def check_motion(motion, name: str = "motion") -> GroundMotion:
+    """``motion`` if it is a :class:`GroundMotion`, else a TypeError naming ``name`` and
+    how to make one (a path is read by ``ra.read_record``; a system first: swapped?)."""
+    if isinstance(motion, GroundMotion):
+        return motion
+    if isinstance(motion, (str, os.PathLike)):
+        hint = f": read the file first, ra.read_record({str(motion)!r})"
+    elif isinstance(motion, _Sweepable):
+        hint = " (a system: the system comes first, ra.simulate(system, motion, ratio=...))"
+    else:
+        hint = " (ra.pulse, ra.read_record or ra.el_centro make one)"
+    raise TypeError(f"{name} must be a GroundMotion, got {type(motion).__name__}{hint}"[:300])
+
+
+def check_system(sys_, name: str = "sys_"):
+    """``sys_`` if it is a system of :func:`system`, else a TypeError naming ``name``."""
+    if isinstance(sys_, _Sweepable):
+        return sys_
+    if isinstance(sys_, GroundMotion):
+        hint = " (a ground motion: the system comes first, ra.simulate(system, motion, ...))"
+    elif isinstance(sys_, str) and sys_ in KINDS:
+        hint = f": build it first, ra.system({sys_!r}, ...)"
+    else:
+        hint = " (ra.system(kind, ...) builds one)"
+    raise TypeError(f"{name} must be a system, got {type(sys_).__name__}{hint}"[:300])
+
+
 def scale_to_ratio(motion: GroundMotion, ratio: float, ap_min: float) -> GroundMotion:
     """The motion scaled so that its peak |a_g| is ratio·ap_min (docs/theory.md Eq. 2.1)."""
-    ratio = float(ratio)
-    if not (ratio >= 0 and math.isfinite(ratio)):
-        raise ValueError(f"ratio must be a finite number >= 0, got {ratio}")
+    motion = check_motion(motion)
+    if isinstance(ratio, (list, tuple, np.ndarray)) and np.ndim(ratio) > 0:
+        raise TypeError(f"ratio must be one number, got {type(ratio).__name__} of "
+                        f"{np.size(ratio)} (many ratios: ra.batch or ra.oas)")
+    ratio = ratio_value("ratio", ratio)
     return motion.scaled(ratio * ap_min / motion.pga)
 
 
@@ -120,7 +158,7 @@ class BlockSystem(_Sweepable):
     @property
     def ap_min(self) -> float:
         """g·tan(alpha) [m/s²] (paper Eq. 2)."""
-        return RigidBlock(1.0, self.alpha, self.g).ap_min
+        return RigidBlock(1.0, self.alpha, self.g, self.restitution).ap_min
 
     @property
     def p_ref(self) -> float | None:
@@ -234,6 +272,55 @@ class MDOFSystem(_Scaled):
         return d
 
 
+#: Largest acceleration of gravity accepted [m/s²] (the Sun's surface has 274).
+G_MAX = 1000.0
+
+_ARCH = ("shape", "span", "rise", "thickness", "rise_over_span", "thickness_over_span",
+         "blocks")
+_MDOF_ONLY = ("column", "friction", "spans", "pier_height", "pier_width", "pier_blocks",
+              "abutments", "wall", "block", "colonnade", "bay", "lintel", "assembly")
+#: The keywords of :func:`system` that each kind takes (g, t_free and gap_tol: every kind).
+_APPLIES = {
+    "block": {"alpha", "p", "width", "height", "restitution", "h_factor"},
+    "frame": {"alpha", "p", "mass_ratio", "restitution", "h_factor"},
+    "sdof": {"p", "delta", "ap_min", "restitution", "h_factor"},
+    "fourhinge": {*_ARCH, "restitution", "h_factor"},
+    "mdof": {*_ARCH, *_MDOF_ONLY, "h_factor", "restitution"},  # restitution: its own message
+}
+_NUMBERS = ("alpha", "p", "width", "height", "span", "rise", "thickness", "rise_over_span",
+            "thickness_over_span", "mass_ratio", "delta", "ap_min", "restitution", "g",
+            "t_free", "h_factor", "gap_tol", "friction", "pier_height", "pier_width", "bay",
+            "lintel")
+_INTEGERS = ("blocks", "spans", "pier_blocks", "colonnade")
+_EVERY_KIND = ("g", "t_free", "gap_tol")
+_ALL_KEYWORDS = {*_NUMBERS, *_INTEGERS, "shape", "column", "abutments", "wall", "block",
+                 "assembly"}
+
+
+def _check_types(given: dict) -> None:
+    """TypeError naming the keyword of :func:`system` whose value has the wrong type
+    (``alpha=True`` is not 1 rad, ``blocks=20.9`` is not 20 voussoirs)."""
+    for k, v in given.items():
+        if k in _NUMBERS:
+            number(k, v)
+        elif k in _INTEGERS:
+            integer(k, v)
+        elif k == "shape" and not isinstance(v, str):
+            raise TypeError(f"shape must be a string (one of catenary, circular, pointed, "
+                            f"elliptical), got {type(v).__name__}")
+        elif k == "abutments" and not isinstance(v, (bool, np.bool_)):
+            raise TypeError(f"abutments must be True or False, got {type(v).__name__}")
+        elif k == "column" and isinstance(v, str):
+            raise TypeError("column must be a sequence of (width, height[, x_centre]) rows, "
+                            f"got str {v!r} (the CLI's --column text is parsed by it)")
+        elif k in ("column", "wall", "block") and isinstance(v, (int, float, bool)):
+            raise TypeError(f"{k} must be a sequence (or the CLI's comma-separated text), "
+                            f"got {type(v).__name__} {v!r}")
+        elif k == "assembly" and not isinstance(v, (str, dict, os.PathLike)):
+            raise TypeError(f"assembly must be a JSON file's path or its dict, got "
+                            f"{type(v).__name__}")
+
+
 def _need(kind: str, **given) -> None:
     missing = [k for k, v in given.items() if v is None]
     if missing:
@@ -317,18 +404,22 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     -------
     BlockSystem, MechanismSystem or MDOFSystem
     """
-    g = positive("g", g)
-    if kind not in KINDS:
-        raise ValueError(f"unknown system kind {kind!r}: choose one of {', '.join(KINDS)}")
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise (ValueError if isinstance(kind, str) else TypeError)(
+            f"unknown system kind {kind!r}: choose one of {', '.join(KINDS)}"[:200])
+    given = {k: v for k, v in locals().items() if k in _ALL_KEYWORDS and v is not None}
+    _check_types(given)
+    g = in_range("g", g, 0.0, G_MAX, lo_open=True)
+    t_free = in_range("t_free", t_free, 0.0, math.inf, hi_open=True)
     sdof_h = SDOF_H_FACTOR if h_factor is None else h_factor
-    mdof_only = {"friction": friction, "spans": spans, "pier_height": pier_height,
-                 "pier_width": pier_width, "pier_blocks": pier_blocks, "abutments": abutments,
-                 "wall": wall, "block": block, "colonnade": colonnade, "bay": bay,
-                 "lintel": lintel, "assembly": assembly}
-    extra = [k for k, v in mdof_only.items() if v is not None]
-    if kind != "mdof" and extra:
-        raise ValueError(f"--{extra[0].replace('_', '-')} belongs to --system mdof, not "
+    mdof_only = [k for k in _MDOF_ONLY if k in given]
+    if kind != "mdof" and mdof_only:
+        raise ValueError(f"--{mdof_only[0].replace('_', '-')} belongs to --system mdof, not "
                          f"{kind}")
+    extra = [k for k in given if k not in _APPLIES[kind] and k not in _EVERY_KIND]
+    if extra:
+        raise ValueError(f"--{extra[0].replace('_', '-')} does not apply to --system {kind} "
+                         f"({KINDS[kind]}): leave it out")
     if kind == "block":
         if width is not None or height is not None:
             if p is not None or alpha is not None:
@@ -348,9 +439,14 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
             arch = _arch(shape, span, rise, thickness, rise_over_span, thickness_over_span,
                          kind)
             _need(kind, blocks=blocks)
-        elif shape is not None or blocks is not None:
-            raise ValueError("give one structure: an arch (shape ... blocks), a column, a "
-                             "wall, a colonnade or an assembly file")
+        else:
+            other = next(k for k, v in (("column", column), ("wall", wall),
+                                        ("colonnade", colonnade), ("assembly", assembly))
+                         if v is not None)
+            arch_opts = [k for k in _ARCH if k in given]
+            if arch_opts:
+                raise ValueError(f"--{arch_opts[0].replace('_', '-')} describes an arch: it "
+                                 f"does not apply to --{other} (give one structure)")
         assembly = mdof_assembly(
             arch=arch, blocks=blocks, column=column, friction=friction, spans=spans,
             pier_height=pier_height, pier_width=pier_width, pier_blocks=pier_blocks,
@@ -417,12 +513,15 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
             return assembly_file.assembly_from_dict(assembly, mu=mu, g=g)
         return assembly_file.read_assembly(assembly, mu=mu, g=g)
     if wall is not None or colonnade is not None:
-        _need("mdof", block=block)
+        if block is None:
+            raise ValueError(f"--{'wall' if wall is not None else 'colonnade'} needs --block "
+                             "B,H: the size of its blocks [m] (keyword: block)")
         bw, bh = _pair("--block", "B,H", block)
         if wall is not None:
             rows, cols = _pair("--wall", "ROWS,COLUMNS", wall)
             if not all(float(v).is_integer() for v in (rows, cols)):
-                raise ValueError(f"--wall needs whole numbers of rows and columns, got {wall!r}")
+                raise ValueError(f"--wall needs whole numbers of rows and columns, got "
+                                 f"{show(wall)}")
             rows, cols = int(rows), int(cols)
             return builders.wall(rows, cols, bw, bh, mu=mu, g=g)
         _need("mdof", bay=bay, lintel=lintel)
@@ -441,13 +540,18 @@ def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None
              ) -> Response:
     """One time history: ``sys_`` at frequency parameter p (None: its own size) on the
     motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 2.1)."""
-    return sys_.simulate(motion, ratio=ratio, p=p)
+    check_system(sys_)
+    check_motion(motion)
+    return sys_.simulate(motion, ratio=ratio, p=None if p is None else number("p", p))
 
 
 def batch(sys_, motion: GroundMotion, p, ratio) -> Batch:
     """Many verdicts of ``sys_`` on one motion: (p, ratio) broadcast, run in parallel."""
-    return sys_.batch(motion, p, ratio)
+    check_system(sys_)
+    check_motion(motion)
+    return sys_.batch(motion, numbers("p", p), numbers("ratio", ratio))
+
 
 
 __all__ = ["KINDS", "BlockSystem", "MDOFSystem", "MechanismSystem", "batch", "check_blocks",
-           "scale_to_ratio", "simulate", "system"]
+           "check_motion", "check_system", "numbers", "scale_to_ratio", "simulate", "system"]

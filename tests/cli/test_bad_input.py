@@ -9,6 +9,7 @@ addresses, limits of rockarch.core.limits).
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -48,6 +49,25 @@ BAD_RECORDS = {
     "dt.AT2": AT2_HEAD.replace(".0100", "0") + " .1 .2 .3 .4\n",
     "nan.AT2": AT2_HEAD + " .1 NaN .3 .4\n",
     "text.AT2": AT2_HEAD + " .1 abc .3 .4\n",
+    # issue 22: sizes and values that used to overflow, hang or allocate gigabytes
+    "huge.txt": "0 1e308\n0.01 -1e308\n0.02 1e308\n",
+    "dt_tiny.txt": "0 1\n1e-300 2\n2e-300 -3\n",
+    "dt_huge.txt": "0 1\n1e300 2\n2e300 -3\n",
+    "npts_1e12.AT2": AT2_HEAD.replace("NPTS=      4", "NPTS=1000000000000") + " .1 .2\n",
+    "huge.AT2": AT2_HEAD + " 1E300 .2 .3 .4\n",
+}
+#: Bad assembly files (JSON): name -> content.
+BAD_ASSEMBLIES = {
+    "latin1.json": b'{"name": "caf\xe9", "blocks": []}',
+    "utf16.json": "{}".encode("utf-16"),
+    "array.json": b"[1, 2, 3]",
+    "empty.json": b"",
+    "huge.json": b'{"blocks": [{"polygon": [[0, 0], [1e300, 0], [1e300, 1e300], [0, 1e300]]}]}',
+    "nan.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, NaN], [0, 2]]}]}',
+    # 3000 stacked blocks: refused by the block limit before any statics
+    "blocks3000.json": json.dumps({"blocks": [
+        {"polygon": [[0, k / 10], [0.4, k / 10], [0.4, (k + 1) / 10], [0, (k + 1) / 10]]}
+        for k in range(3000)]}).encode(),
 }
 
 
@@ -55,6 +75,8 @@ BAD_RECORDS = {
 def files(tmp_path_factory):
     """The bad records, a folder, a plain file, a good two-column record, a site file."""
     d = tmp_path_factory.mktemp("bad-inputs")
+    for name, content in BAD_ASSEMBLIES.items():
+        (d / name).write_bytes(content)
     for name, content in BAD_RECORDS.items():
         f = d / name
         if isinstance(content, bytes):
@@ -318,7 +340,125 @@ def _cases():
     # --- reproduce
     add("reproduce-out-is-file", ["reproduce", "--out", "{files}/plain.txt", "--quick"])
     add("reproduce-no-out", ["reproduce", "--quick"])
+    _issue22_cases(add)
     return cases
+
+
+def _issue22_cases(add) -> None:
+    """Issue 22's bad inputs that slipped through (hangs, unbounded work and memory, raw
+    library text, late checks, options that do not apply, Housner's law out of range) and
+    held-out ones of the same kinds: each one line, exit 2, before any work."""
+    block = SIM["block"] + MOTION
+    mdof_col = ["simulate", "mdof"] + MOTION
+    # hangs and unbounded work: every sweep estimates its runs' steps first
+    add("oas-period=1e300", _sub(OAS, period="1e300"))
+    add("oas-square-period=1e200", _sub(OAS, signal="square", period="1e200"))
+    add("oas-mdof-period=1e300", ["oas", "--system", "mdof", "--shape", "catenary",
+                                  "--rise-over-span", "0.3", "--thickness-over-span", "0.025",
+                                  "--blocks", "12", "--p", "2", "--ratio-steps", "3",
+                                  "--signal", "sine", "--period", "1e300", "--no-store"])
+    add("oas-fourhinge-period=1e300", ["oas", "--system", "fourhinge", "--shape", "catenary",
+                                       "--rise-over-span", "0.3", "--thickness-over-span",
+                                       "0.025", "--p", "2", "--ratio-steps", "3", "--signal",
+                                       "sine", "--period", "1e300", "--no-store"])
+    add("oas-sdof-period=1e300", ["oas", "--system", "sdof", "--delta", "0.1", "--ap-min",
+                                  "1.5", "--p", "2", "--ratio-steps", "3", "--signal", "sine",
+                                  "--period", "1e300", "--no-store"])
+    add("site-t-free=1e300", _sub(SITE, t_free="1e300"))
+    add("fragility-t-free=1e300", ["fragility", "--system", "block", "--alpha", "0.1", "--p",
+                                   "2", "--records", REC, "--t-free", "1e300", "--no-store"])
+    add("records-synth-n=1e9", ["records", "synth", "{tmp}/s", "--n", "1000000000"])
+    add("records-synth-seed=-1", ["records", "synth", "{tmp}/s", "--n", "2", "--seed", "-1"])
+    add("records-synth-dt=1e-9", ["records", "synth", "{tmp}/s", "--n", "2", "--dt", "1e-9"])
+    add("records-synth-f-corner=1e9", ["records", "synth", "{tmp}/s", "--n", "2",
+                                       "--f-corner", "1e9"])
+    add("mdof-wall=1000x1000", mdof_col + ["--wall", "1000,1000", "--block", "0.4,0.2"])
+    add("mdof-wall=30x30", mdof_col + ["--wall", "30,30", "--block", "0.4,0.2"])
+    add("mdof-colonnade=1e6", mdof_col + ["--colonnade", "1000000", "--block", "0.4,2",
+                                          "--bay", "1", "--lintel", "0.5"])
+    add("mdof-bridge-spans=300", _sub(SIM["mdof"] + MOTION, spans="300", pier_height="3",
+                                      pier_width="1"))
+    add("mdof-pier-blocks=1e6", _sub(SIM["mdof"] + MOTION, spans="1", pier_height="3",
+                                     pier_width="1", pier_blocks="1000000"))
+    add("mdof-assembly-3000-blocks", mdof_col + ["--assembly", "{files}/blocks3000.json"])
+    add("oas-mdof-wall=1000x1000", _sub(OAS, alpha=None, system="mdof", wall="1000,1000",
+                                        block="0.4,0.2"))
+    add("arch-blocks=1e6", _sub(ARCH, blocks="1000000"))
+    add("animate-frames=1e9", _sub(ANIM, frames="1000000000"))
+    add("animate-fps=1e6", _sub(ANIM, fps="1000000"))
+    add("animate-magnify=1e300", _sub(ANIM, magnify="1e300"))
+    add("oas-dask-workers=1e5", _sub(OAS, dask_workers="100000"))
+    add("oas-workers=1e6", _sub(OAS, workers="1000000"))
+    add("fragility-bootstrap=1e9", ["fragility", "--system", "block", "--alpha", "0.1", "--p",
+                                    "2", "--records", REC, "--bootstrap", "1000000000",
+                                    "--no-store"])
+    add("records-info-periods=1e300", ["records", "info", REC, "--periods", "1e300"])
+    add("records-info-periods=1e-9", ["records", "info", REC, "--periods", "1e-9"])
+    add("site-p-min=1e-300", _sub(SITE, p_min="1e-300", p_max="1e-299"))
+    # records: sizes and values known before the samples are parsed
+    for name in ("huge.txt", "dt_tiny.txt", "dt_huge.txt", "npts_1e12.AT2", "huge.AT2"):
+        add(f"block-record-{name}", _sub(block, signal=None, period=None,
+                                         record=f"{{files}}/{name}"))
+    add("records-info-huge.txt", ["records", "info", "{files}/huge.txt"])
+    # raw library text: scipy's brentq, undecodable files, numbers out of range
+    add("arch-rise=1e-9", _sub(ARCH, rise="1e-9"))
+    add("arch-rise=1e9", _sub(ARCH, rise="1e9"))
+    add("arch-span=1e300", _sub(ARCH, span="1e300"))
+    add("arch-all=1e300", _sub(ARCH, span="1e300", rise="1e299", thickness="1e298"))
+    add("arch-thickness=1e-9", _sub(ARCH, thickness="1e-9"))
+    add("arch-pointed-rise=1e9", _sub(ARCH, shape="pointed", rise="1e9"))
+    for name in BAD_ASSEMBLIES:
+        add(f"mdof-assembly-{name}", mdof_col + ["--assembly", f"{{files}}/{name}"])
+    add("mdof-column=1e300", mdof_col + ["--column", "1e300,1e300"])
+    add("mdof-friction=1e-300", mdof_col + ["--column", "0.4,1", "--friction", "1e-300"])
+    add("block-g=1e308", _sub(block, g="1e308"))
+    add("block-ratio=1e300", _sub(block, ratio="1e300"))
+    add("oas-ratio-max=1e300", _sub(OAS, ratio_min="0", ratio_max="1e300"))
+    add("oas-tol=1e-300", _sub(OAS, tol="1e-300"))  # ~1000 bisection rounds: a hang
+    add("mdof-column-empty-block", mdof_col + ["--column", "0.4,1;;0.3,0.5"])
+    add("mdof-column=0.3-plain-numbers", mdof_col + ["--column", "0.3"])
+    # late checks: refused before the IDA
+    des = ["design", "--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness",
+           "0.35", "--records", REC]
+    add("design-probability=1.5", des + ["--pga", "3", "--probability", "1.5"])
+    add("design-pga=-3", des + ["--pga", "-3"])
+    add("design-percentile=150", des + ["--percentile", "150"])
+    add("design-system-probability=0", ["design", "--system", "block", "--alpha", "0.1",
+                                        "--p", "2", "--records", REC, "--probability", "0",
+                                        "--no-store"])
+    # options that do not apply
+    add("design-system-block-shape", ["design", "--system", "block", "--alpha", "0.1", "--p",
+                                      "2", "--shape", "circular", "--site",
+                                      "{files}/site.nc"])
+    add("design-system-block-blocks", ["design", "--system", "block", "--alpha", "0.1",
+                                       "--p", "2", "--blocks", "7", "--site",
+                                       "{files}/site.nc"])
+    add("design-system-thickness-rule=equivalent",
+        ["design", "--system", "mdof", "--column", "0.4,1.0", "--thickness-rule",
+         "equivalent", "--site", "{files}/site.nc"])
+    add("design-site-probability", DESIGN + ["--probability", "0.2"])
+    add("design-site-percentile", DESIGN + ["--curve", "characteristic", "--percentile", "10"])
+    add("design-site-pga", DESIGN + ["--pga", "3"])
+    add("oas-block-shape", _sub(OAS, shape="circular"))
+    add("oas-block-blocks", _sub(OAS, blocks="5"))
+    add("oas-sdof-alpha", _sub(OAS, system="sdof", delta="0.1", ap_min="1"))
+    add("oas-fourhinge-mass-ratio", ["oas", "--system", "fourhinge", "--shape", "catenary",
+                                     "--rise-over-span", "0.3", "--thickness-over-span",
+                                     "0.025", "--mass-ratio", "0.5", "--p", "2", "--signal",
+                                     "sine", "--period", "1", "--no-store"])
+    add("mdof-wall-blocks", mdof_col + ["--wall", "4,10", "--block", "0.4,0.2", "--blocks",
+                                        "5"])
+    add("mdof-wall-no-block", mdof_col + ["--wall", "4,10"])
+    add("block-cycles-with-sine", _sub(block, cycles="5"))
+    add("block-cycles-with-record", _sub(block, signal=None, period=None, record=REC,
+                                         cycles="5"))
+    add("block-units-with-signal", _sub(block, units="g"))
+    # Housner's restitution 1 - 1.5 sin²alpha < 0: refused, --restitution asked for
+    add("block-alpha=1.2-housner", _sub(block, alpha="1.2"))
+    add("block-3x1-housner", _sub(block, alpha=None, p=None, width="3", height="1"))
+    add("frame-stocky-housner", _sub(SIM["frame"] + MOTION, alpha="0.9", mass_ratio="5"))
+    add("sdof-delta=1.2-housner", _sub(SIM["sdof"] + MOTION, delta="1.2"))
+    add("oas-alpha=1.0-housner", _sub(OAS, alpha="1.0"))
 
 
 CASES = _cases()

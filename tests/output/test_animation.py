@@ -113,9 +113,10 @@ def test_cli_progress_on_request(tmp_path):
 
 
 @pytest.mark.parametrize("opt, msg", [
-    (["--fps", "0"], "--fps must be >= 1"), (["--frames", "1"], "--frames must be >= 2"),
-    (["--magnify", "0.5"], "--magnify must be a number >= 1"),
-    (["--magnify", "nan"], "--magnify must be a number >= 1"),
+    (["--fps", "0"], "--fps must lie in [1, 100]"),
+    (["--frames", "1"], "--frames must lie in [2, 10000]"),
+    (["--magnify", "0.5"], "--magnify must lie in [1, 10000]"),
+    (["--magnify", "nan"], "--magnify must lie in [1, 10000]"),
 ])
 def test_cli_bad_animation_options(tmp_path, opt, msg):
     res = runner.invoke(app, ["animate", *ARCH, "--ratio", "1.5", *opt, "--out",

@@ -82,7 +82,26 @@ def test_site_legend_of_many_records_has_one_entry():
                      "record_name": ("record", [f"r{k}" for k in range(n)])},
                     coords={"p": [1.0, 2.0]}, attrs={"percentile": 50.0, "title": "site"})
     labels = [t.get_text() for t in figures.plot_site(ds).axes[0].get_legend().get_texts()]
-    assert labels == [f"{n} records", "envelope", "50th percentile"]
+    # the percentile equals the envelope here: one line, one entry that says so
+    assert labels == [f"{n} records", "envelope (= the 50th percentile)"]
+
+
+def test_site_legend_names_only_visible_curves():
+    """Two records: the 50th percentile ('lower') is the envelope, drawn once; when the
+    curves differ, the percentile is drawn over the envelope (visible where they meet)."""
+    ds = xr.Dataset({"boundary": (("record", "p"), [[1.2, 1.1], [1.3, 1.4]]),
+                     "envelope": ("p", [1.2, 1.1]), "characteristic": ("p", [1.2, 1.1]),
+                     "record_name": ("record", ["a", "b"])},
+                    coords={"p": [1.0, 2.0]}, attrs={"percentile": 50.0, "title": "site"})
+    ax = figures.plot_site(ds).axes[0]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == [
+        "a", "b", "envelope (= the 50th percentile)"]
+    ds["characteristic"] = ("p", [1.25, 1.1])
+    ax = figures.plot_site(ds).axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels[-2:] == ["envelope", "50th percentile"]
+    env, pct = ax.get_lines()[-2:]
+    assert pct.get_zorder() > env.get_zorder() and pct.get_linestyle() == "--"
 
 
 def test_one_stylesheet_and_escaped_tables():
@@ -97,3 +116,67 @@ def test_boundary_table_format(b, text):
     lines = boundary_table(np.array([2.0]), np.array([b]), 5.0)
     assert lines[0] == f"{'p [1/s]':>10}  {'boundary ap/ap,min':>20}"
     assert lines[1] == f"{'2':>10}  {text:>20}"
+
+
+def _labels_with_units(fig) -> list[tuple[str, str]]:
+    """(x label, y label) of every axes of a figure that has ticks; axes sharing their x
+    axis (stacked panels) take the label of the one that shows it."""
+    def xlabel(ax):
+        return " ".join(a.get_xlabel() for a in ax.get_shared_x_axes().get_siblings(ax))
+
+    return [(xlabel(ax), ax.get_ylabel()) for ax in fig.axes if ax.get_xticks().size]
+
+
+def test_every_figure_kind_labels_its_axes_with_units():
+    """The CLI's figures: each axis named, with its unit in brackets ([-] dimensionless)."""
+    import rockarch as ra
+    from rockarch.mdof import column
+    from rockarch.output.collapse_plots import collapse_figure
+    from rockarch.output.fragility_plots import plot_fragility
+    from rockarch.risk import fragility as fr
+
+    blk = ra.system("block", alpha=0.1, p=2.0)
+    sines = [ra.pulse("sine", period=t) for t in (0.5, 1.0, 2.0)]
+    oas = ra.oas(blk, sines[1], p=[1.0, 2.0], ratio=[1.0, 2.0, 3.0])
+    ida = fr.ida(blk, sines, 2.0, ratio=np.linspace(1, 5, 9))
+    figs = {"response": figures.plot_response(ra.simulate(blk, sines[1], ratio=2.0),
+                                              sines[1]),
+            "oas": figures.plot_oas(oas).figure,
+            "fragility": plot_fragility(fr.fit_ida(ida, n_bootstrap=20)),
+            "collapse": collapse_figure(column([(0.4, 1.0), (0.3, 0.8)])),
+            "mechanism": mechanism_figure(analyse(circular(10, 2.89, 0.35)))}
+    for name, fig in figs.items():
+        for xl, yl in _labels_with_units(fig):
+            assert re.search(r"\[.+\]", xl) and re.search(r"\[.+\]", yl), (name, xl, yl)
+
+
+def test_fragility_axis_in_the_units_of_json_and_g_on_top():
+    """--json gives the median in m/s²: the x axis too, with PGA in g on a second axis."""
+    import rockarch as ra
+    from rockarch.output.fragility_plots import plot_fragility
+    from rockarch.risk import fragility as fr
+
+    blk = ra.system("block", alpha=0.1, p=2.0)
+    ida = fr.ida(blk, [ra.pulse("sine", period=t) for t in (0.5, 1.0)], 2.0,
+                 ratio=np.linspace(1, 5, 9))
+    frag = fr.fit_ida(ida, n_bootstrap=0)
+    fig = plot_fragility(frag)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "PGA [m/s²]"
+    top = [a for a in ax.child_axes if a.get_xlabel()]
+    assert [a.get_xlabel() for a in top] == ["PGA [g]"]
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(f"θ = {frag.fit.median:.3g} m/s²" in t for t in legend), legend
+
+
+def test_long_histories_are_drawn_by_their_envelope():
+    """5e6 samples are drawn as min/max per bin: the same extremes and their times, in
+    time order, 2·DISPLAY_BINS points (the figure of the largest harmonic stays < 1 GB)."""
+    t = np.linspace(0.0, 500.0, 2_000_001)
+    y = np.sin(2 * np.pi * t / 0.1) * np.exp(-t / 300) + 1e-3 * np.cos(t)
+    td, yd = figures.for_display(t, y)
+    assert td.size == 2 * figures.DISPLAY_BINS and np.all(np.diff(td) >= 0)
+    assert yd.max() == y.max() and yd.min() == y.min()
+    assert td[np.argmax(yd)] == t[np.argmax(y)]
+    short = np.arange(10.0)
+    assert figures.for_display(short, short)[0] is short  # short lines as they are

@@ -156,7 +156,7 @@ def _one_line_error(args, *, contains: str):
      "--p-steps 1000000000 is above the limit of 100000 values per axis"),
     (["--p", "1,2", "--ratio-steps", "100001"],
      "--ratio-steps 100001 is above the limit of 100000 values per axis"),
-    (["--p", "1e300,1e301"], "p must lie in (0, 10000]"),  # hung before: p·t/h steps
+    (["--p", "1e300,1e301"], "p must lie in [0.001, 10000]"),  # hung before: p·t/h steps
     (["--p-min", "1", "--p-max", "2", "--p-steps", "100000", "--ratio-steps", "101"],
      "100000 p × 101 ratio values = 10,100,000 simulations (~0.505 GB), above the limit "
      "of 10,000,000 per command"),

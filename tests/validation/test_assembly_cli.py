@@ -130,7 +130,7 @@ def test_bad_input_one_line(tmp_path):
         (["--assembly", str(bowtie)], "not convex"),
         (["--assembly", str(overlap)], "overlap"),
         (["--assembly", str(falls)], "lintel falls"),
-        (["--assembly", str(tmp_path / "missing.json")], "cannot read"),
+        (["--assembly", str(tmp_path / "missing.json")], "no such file"),
         (["--wall", "3", "--block", "0.4,0.2"], "--wall needs 2"),
         (["--wall", "3,4"], "--block"),
         ([*ARCH, "--spans", "2", "--pier-height", "3", "--pier-width", "0.05"],

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from rockarch.arch.geometry import Arch
+from rockarch.core import limits
+from rockarch.core.validate import integer
 
 _MIN_SUB = 2000  # minimum number of sub-segments along the whole arch in a discretisation
 
@@ -82,12 +84,10 @@ def voussoirs(arch: Arch, n: int) -> Voussoirs:
     whole arch has at least ~2000 of them (exact areas/centroids to O(1e-7) for curved arches).
     Mass, centroid and polar moment follow ``arch.mass_model`` (see :mod:`rockarch.arch.geometry`).
     """
-    try:
-        n = int(n)
-    except (TypeError, ValueError):
-        raise ValueError(f"number of voussoirs must be an integer, got {n!r}") from None
+    n = integer("number of voussoirs (blocks)", n)
     if n < 4:
         raise ValueError(f"at least 4 voussoirs are needed for a four-hinge mechanism, got {n}")
+    limits.check_count("the arch", n, "voussoirs", "use fewer --blocks")
     sub = max(1, math.ceil(_MIN_SUB / n))
     sig = np.linspace(0.0, 1.0, n * sub + 1)
     ip, ep = arch.joints_at(sig)

@@ -42,7 +42,7 @@ from rockarch.arch.shapes import (
     _two_centred,
 )
 from rockarch.arch.weights import HorizontalWeights
-from rockarch.core.validate import finite_array, positive
+from rockarch.core.validate import finite_array, number, positive
 
 __all__ = ["CONTINUOUS_BLOCKS", "MASS_MODELS", "SHAPES", "Arch", "catenary", "circular",
            "elliptical", "from_contour", "make_arch", "pointed", "polyline"]
@@ -196,12 +196,39 @@ def _max_curvature(p: np.ndarray) -> float:
     return float(np.max(k))
 
 
-def _thickness_arg(thickness) -> float | Callable:
+#: Spans an arch may have [m] (sizes beyond overflow the masses and the LP's scaling).
+SPAN_RANGE = (1e-3, 1e5)
+#: Rise over span of an arch axis (flatter: a beam; higher: a tower).
+RISE_OVER_SPAN = (1e-3, 10.0)
+#: Smallest thickness over span (the minimum-thickness search starts there).
+MIN_THICKNESS_OVER_SPAN = 1e-6
+
+
+def _span_rise(span, rise) -> tuple[float, float]:
+    """span and rise [m] within :data:`SPAN_RANGE` and :data:`RISE_OVER_SPAN`."""
+    span, rise = positive("span", span), positive("rise", rise)
+    lo, hi = SPAN_RANGE
+    if not lo <= span <= hi:
+        raise ValueError(f"span must lie in [{lo:g}, {hi:g}] m, got {span:g} m")
+    lo, hi = RISE_OVER_SPAN
+    if not lo <= rise / span <= hi:
+        raise ValueError(f"rise/span must lie in [{lo:g}, {hi:g}], got rise = {rise:g} m for "
+                         f"span = {span:g} m (rise/span = {rise / span:.3g})")
+    return span, rise
+
+
+def _thickness_arg(thickness, span: float | None = None) -> float | Callable:
     if callable(thickness):
         return thickness
+    if isinstance(thickness, (bool, np.bool_, str, bytes)) or thickness is None:
+        number("thickness", thickness)  # the TypeError naming it
     arr = np.asarray(thickness, dtype=float)
     if arr.ndim == 0:
-        return positive("thickness", float(arr))
+        d = positive("thickness", float(arr))
+        if span is not None and d < MIN_THICKNESS_OVER_SPAN * span:
+            raise ValueError(f"thickness must be at least {MIN_THICKNESS_OVER_SPAN:g} x span "
+                             f"= {MIN_THICKNESS_OVER_SPAN * span:.3g} m, got {d:g} m")
+        return d
     vals = finite_array("thickness", arr, min_len=2)
     if np.any(vals <= 0):
         raise ValueError("thickness must be > 0 everywhere along the axis")
@@ -211,15 +238,17 @@ def _thickness_arg(thickness) -> float | Callable:
 
 def catenary(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
     """Catenary arch, mass uniform along the arc: y = f + a - a*cosh((x - l/2)/a) (Sect. 4)."""
-    span, rise = positive("span", span), positive("rise", rise)
-    return Arch("catenary", span, rise, _thickness_arg(thickness), _catenary_axis(span, rise),
+    span, rise = _span_rise(span, rise)
+    return Arch("catenary", span, rise, _thickness_arg(thickness, span),
+                _catenary_axis(span, rise),
                 mass_model=mass_model)
 
 
 def circular(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
     """Circular (segmental up to semicircular) arch from span and rise of the axis (Sect. 8)."""
-    span, rise = positive("span", span), positive("rise", rise)
-    return Arch("circular", span, rise, _thickness_arg(thickness), _circular_axis(span, rise),
+    span, rise = _span_rise(span, rise)
+    return Arch("circular", span, rise, _thickness_arg(thickness, span),
+                _circular_axis(span, rise),
                 mass_model=mass_model)
 
 
@@ -231,8 +260,10 @@ def pointed(span: float, rise: float, thickness: float, *, mass_model: str = "vo
     line, so the crown joint is vertical; joints join points at equal fractions of the
     intrados and extrados arc lengths (radial away from the crown, i.e. normal to the axis).
     """
-    span, rise = positive("span", span), positive("rise", rise)
-    d = positive("thickness", thickness)
+    span, rise = _span_rise(span, rise)
+    d = _thickness_arg(thickness, span)
+    if not isinstance(d, float):
+        raise TypeError("a pointed arch takes one uniform thickness (a number)")
     xc = _pointed_centre(span, rise)
     if d >= min(span, 2 * xc):
         raise ValueError(f"thickness {d:g} m is too large for this pointed arch (the intrados "
@@ -244,8 +275,8 @@ def pointed(span: float, rise: float, thickness: float, *, mass_model: str = "vo
 
 def elliptical(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
     """Semi-elliptical arch: semi-axes span/2 (horizontal) and rise (vertical)."""
-    span, rise = positive("span", span), positive("rise", rise)
-    return Arch("elliptical", span, rise, _thickness_arg(thickness),
+    span, rise = _span_rise(span, rise)
+    return Arch("elliptical", span, rise, _thickness_arg(thickness, span),
                 _elliptical_axis(span, rise), mass_model=mass_model)
 
 
@@ -254,6 +285,9 @@ def make_arch(shape: str, span: float, rise: float, thickness, *,
     """Build an arch of one of :data:`SHAPES` by name."""
     builders = {"catenary": catenary, "circular": circular, "pointed": pointed,
                 "elliptical": elliptical}
+    if not isinstance(shape, str):
+        raise TypeError(f"shape must be one of {', '.join(SHAPES)} (a string), got "
+                        f"{type(shape).__name__} {shape!r}"[:200])
     if shape not in builders:
         raise ValueError(f"shape must be one of {', '.join(SHAPES)}, got {shape!r}")
     return builders[shape](span, rise, thickness, mass_model=mass_model)

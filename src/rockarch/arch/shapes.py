@@ -17,6 +17,9 @@ from rockarch.core.validate import positive
 
 SHAPES = ("catenary", "circular", "pointed", "elliptical")
 
+#: Range of rise/span of a catenary axis (its parameter a/l lies in [1e-4, 1e6] there).
+CATENARY_RISE_OVER_SPAN = (1e-6, 100.0)
+
 AxisFn = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
 
 
@@ -25,6 +28,10 @@ def catenary_parameter(span: float, rise: float) -> float:
     span = positive("span", span)
     rise = positive("rise", rise)
     r = rise / span
+    lo, hi = CATENARY_RISE_OVER_SPAN
+    if not lo <= r <= hi:
+        raise ValueError(f"a catenary arch needs {lo:g} <= rise/span <= {hi:g}, got rise = "
+                         f"{rise:g} m for span = {span:g} m (rise/span = {r:.3g})")
 
     def g(la: float) -> float:  # a*(cosh(1/(2a)) - 1) - f/l, decreasing in la = log(a/l)
         a = math.exp(la)

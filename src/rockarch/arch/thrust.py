@@ -26,7 +26,7 @@ from scipy.optimize import brentq, linprog
 from rockarch.arch.cutting import Voussoirs, voussoirs
 from rockarch.arch.geometry import CONTINUOUS_BLOCKS, Arch
 from rockarch.core.constants import G
-from rockarch.core.validate import in_range, positive
+from rockarch.core.validate import in_range, positive, show
 
 _LAMBDA_CAP = 1e3  # a "mechanism" needing more than 1000 g is no mechanism
 
@@ -179,7 +179,7 @@ def _hinges_from(v: Voussoirs, ecc: np.ndarray, res) -> tuple[Hinge, ...]:
 
 def _validate_direction(direction: int) -> int:
     if direction not in (1, -1):
-        raise ValueError(f"direction must be +1 or -1, got {direction!r}")
+        raise ValueError(f"direction must be +1 or -1, got {show(direction)}")
     return int(direction)
 
 

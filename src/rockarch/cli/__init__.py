@@ -15,6 +15,7 @@ from rockarch.cli import (  # noqa: F401 - importing a module registers its comm
     oas,
     records,
     reproduce,
+    risk,
     simulate,
     site,
 )

@@ -8,6 +8,7 @@ import typer
 from typer.core import TyperGroup
 
 from rockarch.core import __version__
+from rockarch.core.console import one_line_warnings
 
 # the click that typer runs on (typer >= 0.24 vendors its own copy)
 _CLICK_ERROR = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
@@ -19,6 +20,7 @@ class OneLineErrors(TyperGroup):
     line ``error: ...`` with exit status 2 as every other bad input."""
 
     def main(self, *args, standalone_mode: bool = True, **kwargs):
+        one_line_warnings()
         try:
             rv = super().main(*args, standalone_mode=False, **kwargs)
         except _NO_ARGS as exc:

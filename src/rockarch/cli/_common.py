@@ -19,6 +19,7 @@ import typer
 from rockarch.arch.geometry import SHAPES
 from rockarch.core.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.core.sweep import check_steps, default_store_dir
+from rockarch.core.validate import frequency, ratio_value
 from rockarch.motion.records import read_record
 from rockarch.motion.signals import SIGNALS, GroundMotion, pulse
 from rockarch.motion.suite import Suite, read_suite
@@ -49,6 +50,13 @@ def print_json(obj: Any) -> None:
     sys.stdout.flush()
 
 
+def write_json(path, obj: Any) -> None:
+    """Write one JSON object to ``path`` atomically, as :func:`print_json` prints it."""
+    from rockarch.core.paths import write_text
+
+    write_text(path, json.dumps(_clean(obj)) + "\n")
+
+
 def fail(message: str) -> None:
     """Print one clear line on stderr and exit with status 2."""
     typer.echo(f"error: {message}", err=True)
@@ -56,9 +64,9 @@ def fail(message: str) -> None:
 
 
 def guarded(func: Callable) -> Callable:
-    """Decorate a CLI command: ValueError / OSError become one line on stderr and exit 2
-    (as do MemoryError and OverflowError, which the limits of rockarch.core.limits should
-    prevent)."""
+    """Decorate a CLI command: ValueError / TypeError / OSError (the library's checks of its
+    arguments) become one line on stderr and exit 2 (as do MemoryError and OverflowError,
+    which the limits of rockarch.core.limits should prevent)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -76,7 +84,7 @@ def guarded(func: Callable) -> Callable:
             devnull = os.open(os.devnull, os.O_WRONLY)
             os.dup2(devnull, sys.stdout.fileno())
             raise SystemExit(141) from None
-        except (ValueError, OSError) as exc:
+        except (ValueError, TypeError, OSError) as exc:
             fail(" ".join(str(exc).split()) if str(exc) else exc.__class__.__name__)
         except MemoryError:
             fail("out of memory: use a shorter motion or --t-free, or fewer grid points")
@@ -121,11 +129,16 @@ def float_list(name: str, text: str) -> np.ndarray:
     return np.array(vals)
 
 
-def motion_shape(signal, period: float | None, cycles: int, record: Path | None,
+def motion_shape(signal, period: float | None, cycles: int | None, record: Path | None,
                  units: str | None) -> GroundMotion:
     """The ground-motion shape of --signal/--period or --record (peak 1 for pulses)."""
     if record is not None and signal is not None:
         raise ValueError("give either --record or --signal/--period, not both")
+    if record is not None and (period is not None or cycles is not None):
+        raise ValueError(f"--{'period' if period is not None else 'cycles'} goes with "
+                         "--signal, not --record (a record has its own time axis)")
+    if record is None and units is not None:
+        raise ValueError("--units goes with --record (the units of a two-column file)")
     if record is not None:
         if record.suffix.lower() == ".at2":
             if units not in (None, "g"):
@@ -151,6 +164,8 @@ def p_grid(p: str | None, p_min: float | None, p_max: float | None, p_steps: int
         raise ValueError("give the p values: --p 0.5,1,2 or --p-min A --p-max B --p-steps N")
     if not (0 < p_min < p_max):
         raise ValueError(f"need 0 < --p-min < --p-max, got {p_min} and {p_max}")
+    frequency("--p-min [1/s]", p_min)
+    frequency("--p-max [1/s]", p_max)
     if p_steps < 2:
         raise ValueError("--p-steps must be >= 2")
     check_steps("--p-steps", p_steps)
@@ -177,6 +192,7 @@ def ratio_grid(ratio_min: float, ratio_max: float | None, ratio_steps: int) -> n
     ratio_max = RATIO_MAX if ratio_max is None else ratio_max
     if not (0 <= ratio_min <= ratio_max and math.isfinite(ratio_max)):
         raise ValueError(f"need 0 <= --ratio-min <= --ratio-max, got {ratio_min}, {ratio_max}")
+    ratio_value("--ratio-max", ratio_max)
     return np.round(np.linspace(ratio_min, ratio_max, ratio_steps), 12)
 
 
@@ -197,7 +213,7 @@ def read_records(sources, units: str | None) -> Suite:
 
 SIGNAL_OPT = typer.Option(None, help="Pulse shape (paper Fig. 14).")
 PERIOD_OPT = typer.Option(None, help="Pulse period T [s].")
-CYCLES_OPT = typer.Option(3, help="Number of cycles of --signal harmonic.")
+CYCLES_OPT = typer.Option(None, help="Number of cycles of --signal harmonic (default 3).")
 RECORD_OPT = typer.Option(None, help="Record file (.AT2 or two-column time/acc).")
 UNITS_OPT = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, cm/s2.")
 RATIO_OPT = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min.")
@@ -240,9 +256,10 @@ NO_STORE_OPT = typer.Option(False, "--no-store", help="Keep no store (always rec
 
 def column_blocks(column: str) -> list[np.ndarray]:
     """--column 'B,H;B,H' as a list of (B, H[, x]) rows."""
-    rows = [r for r in column.split(";") if r.strip()]
-    if not rows:
-        raise ValueError("--column is empty: give 'B,H;B,H' (bottom to top, metres)")
+    rows = column.strip().rstrip(";").split(";")
+    if not column.strip() or any(not r.strip() for r in rows):
+        raise ValueError(f"--column has an empty block: {column!r} (give 'B,H;B,H', bottom "
+                         "to top, metres)")
     return [float_list("--column block", r) for r in rows]
 
 

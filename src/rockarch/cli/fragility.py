@@ -14,16 +14,22 @@ import typer
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import echo_err, guarded, read_records
-from rockarch.cli._groups import SWEEP, SYSTEM, options, sweep_options, system_of
+from rockarch.cli._groups import SWEEP, SYSTEM, Group, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.risk import fragility as fr
-from rockarch.risk.record_scan import check_island_step
+from rockarch.risk.record_scan import SEARCH_STEP, check_island_step, check_search_step
 
-#: The --im choices (the library's registry).
-Im = Enum("Im", {v: v for v in fr.IMS}, type=str)
+#: The --im choices (the library's registry, and "all": the dispersion of each on one IDA).
+Im = Enum("Im", {v: v for v in (*fr.IMS, "all")}, type=str)
+
+#: --search-step's help (fragility and design).
+SEARCH_HELP = (f"Search for collapse islands narrower than the grid below its first collapse, "
+               f"every STEP of ap/ap,min from 1 (the first collapse is the lowest found). "
+               f"Default {SEARCH_STEP:g} for block, frame, sdof and fourhinge, 0 (off: the "
+               "grid alone) for mdof.")
 
 #: From this many records the IDA runs on local processes unless told otherwise: each
 #: record is one task (its scan and bisection), records in parallel across processes
@@ -43,6 +49,59 @@ def ida_sweep_options(opts: dict, n_records: int) -> dict:
     return sweep
 
 
+#: The IDA of a structure over records (fragility; risk with the fragility inline): the
+#: structure's p, the records and the scan (docs/theory.md §11.3).
+IDA: Group = (
+    ("p", float, typer.Option(None, "--p", help="Frequency parameter of the structure "
+                              "[1/s].")),
+    ("records", list[Path], typer.Option(None, "--records", help="Folder of .AT2 records or "
+                                         "record files; several may follow one --records.")),
+    ("more", list[Path], typer.Argument(None, hidden=True)),
+    ("units", str, typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2.")),
+    ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
+                                      "`rockarch oas`); records safe up to it are "
+                                      "censored.")),
+    ("ratio_steps", int, typer.Option(81, help="Scan values of ap/ap,min from 1.")),
+    ("tol", float, cc.TOL_OPT),
+    ("search_step", float, typer.Option(None, help=SEARCH_HELP)),
+    ("island_step", int, typer.Option(1, help="Adaptive scan: every ratio up to the first "
+                                      "collapse, then every K-th one, each safe value found "
+                                      "widened to its safe island (same collapse points, "
+                                      "fewer simulations; islands narrower than K ratios "
+                                      "may be missed). 1: every ratio.")),
+)
+
+
+def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
+            ) -> tuple[fr.IDAResult, list]:
+    """The IDA of the SYSTEM, IDA and SWEEP options of a command in ``im`` (and the
+    motions): options checked before any record is read."""
+    if opts["p"] is None:
+        raise ValueError("give the structure's frequency parameter --p [1/s]")
+    if not opts["records"]:
+        raise ValueError("give the records: --records DIR (or files)")
+    sysobj = system_of(opts)
+    if opts["ratio_steps"] < 2:
+        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
+    if opts["ratio_max"] is not None and not opts["ratio_max"] > 1:
+        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
+                         f"{opts['ratio_max']}")
+    ratios = cc.ratio_grid(1.0, opts["ratio_max"], opts["ratio_steps"])
+    check_island_step(opts["island_step"])
+    if opts["search_step"] is not None:
+        check_search_step(opts["search_step"])
+    suite = read_records(list(opts["records"]) + list(opts["more"] or []), opts["units"])
+    motions = suite.motions
+    with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
+                    echo=echo_err) as (executor, chunk_store):
+        res = fr.ida(sysobj, motions, opts["p"], names=suite.names, im=im, period=period,
+                     ratio=ratios, tol=opts["tol"],
+                     progress=progress and sys.stderr.isatty(), executor=executor,
+                     store=chunk_store, island_step=opts["island_step"],
+                     search_step=opts["search_step"])
+    return res, motions
+
+
 def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
     """--im-range LO,HI in display units (g for pga and sa, m/s for pgv) → SI."""
     if text is None:
@@ -57,32 +116,23 @@ def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
 
 @app.command(short_help="Fragility curve of a structure over a suite of records (IDA).")
 @guarded
-@options(SYSTEM, before="p")
+@options(SYSTEM, IDA, before="im")
 @options(SWEEP)
 def fragility(
-    p: float = typer.Option(..., "--p", help="Frequency parameter of the structure [1/s]."),
-    records: list[Path] = typer.Option(..., "--records", help="Folder of .AT2 records or "
-                                       "record files; several may follow one --records."),
-    more: list[Path] = typer.Argument(None, hidden=True),
-    units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
-    im: Im = typer.Option("pga", help="Intensity measure of the curve's x axis."),
-    period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa)."),
+    im: Im = typer.Option("pga", help="Intensity measure of the curve's x axis: PGA, PGV, "
+                          "Sa(T), PGA/(g tan alpha) (pga_norm; ap,min for any system), "
+                          "PGV*p/(g tan alpha) (pgv_norm); all: the median and beta of "
+                          "each on the same IDA (Sa at T = 2 pi/p unless --period)."),
+    period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa, --im all)."),
     im_range: str = typer.Option(None, help="IM range of the curve and band: LO,HI in g "
                                  "(pga, sa) or m/s (pgv); default the records' range "
                                  "widened by 2."),
-    ratio_max: float = typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
-                                    "`rockarch oas`); records safe up to it are censored."),
-    ratio_steps: int = typer.Option(81, help="Scan values of ap/ap,min from 1."),
-    tol: float = cc.TOL_OPT,
-    island_step: int = typer.Option(1, help="Adaptive scan: every ratio up to the first "
-                                    "collapse, then every K-th one, each safe value found "
-                                    "widened to its safe island (same collapse points, "
-                                    "fewer simulations; islands narrower than K ratios "
-                                    "may be missed). 1: every ratio."),
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="Bootstrap resamples of the band "
                                   "(0: none)."),
     level: float = typer.Option(0.95, help="Confidence level of the band."),
     plot: Path = typer.Option(None, help="Write a PNG of the curve, band and points."),
+    out: Path = typer.Option(None, help="Also write the JSON that --json prints to this "
+                             "file (e.g. for `rockarch risk --fragility FILE`)."),
     json_out: bool = cc.JSON_OPT,
     progress: bool = typer.Option(True, help="Show a progress bar on stderr."),
     **opts,
@@ -90,28 +140,23 @@ def fragility(
     """Incremental dynamic analysis at one p and a lognormal fragility (maximum likelihood,
     censored records included, bootstrap band). PGA and Sa in m/s², PGV in m/s."""
     im = im.value
-    if bootstrap < 0:
-        raise ValueError(f"--bootstrap must be >= 0, got {bootstrap}")
+    if im == "all":
+        if plot is not None or im_range is not None:
+            raise ValueError("--im all prints a table of every IM: --plot and --im-range go "
+                             "with one IM (--im pga, pgv, sa, pga_norm, pgv_norm)")
+        if period is not None and not (np.isfinite(period) and period > 0):
+            raise ValueError(f"--period must be a finite number > 0, got {period}")
+    if not 0 <= bootstrap <= fr.MAX_BOOTSTRAP:
+        raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got {bootstrap}")
     if not 0 < level < 1:
         raise ValueError(f"--level must lie in (0, 1), got {level}")
-    sysobj = system_of(opts)
-    if ratio_steps < 2:
-        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
-    if ratio_max is not None and not ratio_max > 1:
-        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
-                         f"{ratio_max}")
-    ratios = cc.ratio_grid(1.0, ratio_max, ratio_steps)
-    check_island_step(island_step)
-    rng = im_range_si(im_range, im)
-    check_outputs((plot, "--plot", "png"))
-    suite = read_records(list(records) + list(more or []), units)
-    motions = suite.motions
-    with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
-                    echo=echo_err) as (executor, chunk_store):
-        res = fr.ida(sysobj, motions, p, names=suite.names, im=im,
-                     period=period, ratio=ratios, tol=tol,
-                     progress=progress and sys.stderr.isatty(), executor=executor,
-                     store=chunk_store, island_step=island_step)
+    rng = None if im == "all" else im_range_si(im_range, im)
+    check_outputs((plot, "--plot", "png"), (out, "--out", "json"))
+    res, motions = run_ida(opts, "pga" if im == "all" else im,
+                           None if im == "all" else period, progress=progress)
+    if im == "all":
+        _all_ims(res, motions, period, bootstrap, level, json_out, out)
+        return
     if rng is None:
         known = np.concatenate([res.im_collapse[~res.censored], res.im_limit])
         rng = (known.min() / 2, known.max() * 2)
@@ -123,12 +168,50 @@ def fragility(
         frag = fr.Fragility(res, None, {})
     if plot is not None:
         save_figure(plot_fragility(frag, rng), plot)
+    if out is not None:
+        cc.write_json(out, frag.to_dict())
     if json_out:
         cc.print_json(frag.to_dict())
         return
     _print_table(frag)
-    if plot is not None:
-        typer.echo(f"wrote {plot}")
+    for path in (p for p in (plot, out) if p is not None):
+        typer.echo(f"wrote {path}")
+
+
+def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
+             json_out: bool, out: Path | None) -> None:
+    """``--im all``: the fit of the same IDA in every IM (fragility.compare_ims)."""
+    if np.unique(res.ratio_collapse[~res.censored]).size < 2:
+        raise ValueError(f"only {int((~res.censored).sum())} of {len(res.records)} records "
+                         f"collapse up to ap/ap,min = {res.ratio[-1]:g}: no IM can be fitted "
+                         "(raise the scan limit, e.g. --ratio-max 10)")
+    rows = fr.compare_ims(res, motions, period=period, n_bootstrap=bootstrap, level=level)
+    points = [{"record": name, "ratio_collapse": float(c) if np.isfinite(c) else None,
+               "censored": bool(not np.isfinite(c)), "resurrections": int(n)}
+              for name, c, n in zip(res.records, res.ratio_collapse, res.resurrections,
+                                    strict=True)]
+    obj = {"system": res.system, "p": res.p, "ap_min": res.ap_min,
+           "n_records": len(res.records), "n_censored": int(res.censored.sum()),
+           "search_step": res.search_step, "ims": rows, "points": points}
+    if out is not None:
+        cc.write_json(out, obj)
+    if json_out:
+        cc.print_json(obj)
+        return
+    typer.echo(f"dispersion of each IM on one IDA: {res.system} at p = {res.p:g} 1/s over "
+               f"{len(res.records)} records ({int(res.censored.sum())} censored)")
+    lvl = f"{100 * level:g} % interval of beta" if bootstrap else ""
+    typer.echo(f"{'IM':<24} {'units':>5} {'median':>9} {'beta':>6}  {lvl}".rstrip())
+    for r in rows:
+        name = r["label"] if "period" not in r else f"Sa(T = {r['period']:.3g} s)"
+        ci = r["ci"].get("beta")
+        typer.echo(f"{name:<24} {r['units']:>5} {r['median']:>9.4g} {r['beta']:>6.3f}"
+                   + (f"  {ci[0]:.3f} … {ci[1]:.3f}" if ci else ""))
+    best = min(rows, key=lambda r: r["beta"])
+    typer.echo(f"lowest beta: {best['label']} (the dimensionless IMs are PGA and PGV times "
+               "constants here: the same beta)")
+    if out is not None:
+        typer.echo(f"wrote {out}")
 
 
 def _print_table(frag: fr.Fragility) -> None:

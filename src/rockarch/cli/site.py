@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import typer
@@ -28,8 +29,9 @@ from rockarch.cli._common import (
 from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import _print_table, ida_sweep_options
-from rockarch.core.validate import positive
-from rockarch.design import design_check, design_system
+from rockarch.cli.risk import RISK, check_years, hazard_of
+from rockarch.core.validate import in_range, positive
+from rockarch.design import design_check, design_system, site_risk, smallest_thickness
 from rockarch.output import check_outputs, staged
 from rockarch.output.figures import plot_site, save_figure
 from rockarch.output.fragility_plots import fragility_html
@@ -111,6 +113,7 @@ def site_oas(
              "--system at a site.")
 @guarded
 @options(MDOF, before="system")
+@options(RISK, before="save_site")
 @options(SWEEP)
 def design(
     system: System = typer.Option(None, help="Any structure instead of the arch's "
@@ -124,7 +127,7 @@ def design(
     mass_ratio: float = typer.Option(None, help="frame: lintel mass / mass of both columns."),
     delta: float = typer.Option(None, help="sdof: neutral angle delta [rad]."),
     ap_min: float = typer.Option(None, "--ap-min", help="sdof: limit acceleration [m/s²]."),
-    percentile: float = typer.Option(50.0, help="With --records: percentile of the records' "
+    percentile: float = typer.Option(None, help="With --records: percentile of the records' "
                                      "boundaries (--system: collapse PGAs) read by --curve "
                                      "characteristic (lower: safer)."),
     ratio_max: float = typer.Option(None, help="--system with --records: IDA scan limit "
@@ -144,20 +147,29 @@ def design(
                               "(.AT2 files state their own)."),
     pga: float = typer.Option(None, help="With --records: probability of collapse at this "
                               "PGA [m/s²]."),
-    probability: float = typer.Option(0.1, help="With --records: the PGA at this "
-                                      "probability of collapse."),
+    probability: float = typer.Option(None, help="With --records: the PGA at this "
+                                      "probability of collapse given the PGA (default "
+                                      "0.1). With --hazard: the target probability of "
+                                      "collapse in --years N years: the largest scale of "
+                                      "the site's hazard (and, for the arch, the smallest "
+                                      "thickness) that meets it."),
+    hazard: Path = typer.Option(None, "--hazard", help="With --records: the site's hazard "
+                                "curve in PGA (as `rockarch risk --hazard`): the annual "
+                                "frequency of collapse and the probability of collapse in "
+                                "--years N years."),
     save_site: Path = typer.Option(None, help="With --records: also write the site OAS "
                                    "computed on the fly (NetCDF, reusable as --site)."),
-    thickness_rule: str = typer.Option("equivalent", help="Replacement catenary thickness: "
-                                       "equivalent (same ap,min) or lower-bound."),
+    thickness_rule: str = typer.Option(None, help="Replacement catenary thickness: "
+                                       "equivalent (same ap,min; default) or lower-bound."),
     curve: str = typer.Option("envelope", help="Site curve: envelope, characteristic "
                               "(percentile), normalised (over p·Tm) or simplified (two "
                               "durations)."),
-    replacement_axis: str = typer.Option("catenary", help="Replacement axis: catenary "
-                                         "(uniform mass) or weighted (the funicular of the "
-                                         "arch's own mass)."),
-    replacement_mass: str = typer.Option("own", help="Replacement mass: own (its uniform "
-                                         "mass) or original (the arch's mass on its axis)."),
+    replacement_axis: str = typer.Option(None, help="Replacement axis: catenary "
+                                         "(uniform mass; default) or weighted (the funicular "
+                                         "of the arch's own mass)."),
+    replacement_mass: str = typer.Option(None, help="Replacement mass: own (its uniform "
+                                         "mass; default) or original (the arch's mass on its "
+                                         "axis)."),
     g: float = G_OPT,
     report: Path = typer.Option(None, help="Write a self-contained HTML report."),
     json_out: bool = JSON_OPT,
@@ -171,9 +183,14 @@ def design(
     With --records the computation runs on the sweep executor and store (the sweep options
     as in oas)."""
     args = {k: v for k, v in locals().items() if k != "opts"} | opts
+    _check_design_inputs(args, records or [])
     if system is not None:
         _design_system(args, records or [], json_out)
         return
+    thickness_rule = thickness_rule or "equivalent"
+    replacement_axis = replacement_axis or "catenary"
+    replacement_mass = replacement_mass or "own"
+    percentile = 50.0 if percentile is None else percentile
     unused = [k for k in _SYSTEM_ONLY if args[k] is not None]
     shape, span, rise, thickness = (opts[k] for k in ("shape", "span", "rise", "thickness"))
     if unused:
@@ -186,10 +203,7 @@ def design(
         raise ValueError(f"--thickness-rule must be {' or '.join(RULES)}, got "
                          f"{thickness_rule!r}")
     check_outputs((report, "--report", "html"), (save_site, "--save-site", "netcdf"))
-    if (site_file is None) == (not records):
-        raise ValueError("give either --site FILE or --records DIR")
-    if save_site is not None and not records:
-        raise ValueError("--save-site goes with --records (the site OAS computed on the fly)")
+    site_hazard = _hazard(args, bool(records))
     if records:
         suite = read_records(records, units)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
@@ -211,12 +225,32 @@ def design(
                  "range; the result is a lower bound")
     extra, html_extra = {}, ""
     if records:
-        frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
-                                 alpha=float(site_ds.attrs["alpha"]), names=suite.names,
-                                 ratio=site_ds["ratio"].values)
-        extra["fragility"] = fr.design_summary(frag, pga=pga, probability=probability, g=g)
-        if report is not None:
-            html_extra = fragility_html(frag, extra["fragility"], suite)
+        try:
+            frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
+                                     alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                                     ratio=site_ds["ratio"].values)
+        except fr.TooFewCollapses as exc:  # the safe PGA is still the answer
+            if site_hazard is not None:
+                raise ValueError(f"--hazard needs the records' fragility: {exc}") from None
+            echo_err(f"warning: {exc}; no fragility")
+            frag, extra = None, {"fragility": None, "note": str(exc)}
+        if frag is not None:
+            extra["fragility"] = fr.design_summary(frag, pga=pga,
+                                                   probability=_conditional(args), g=g)
+            if report is not None:
+                html_extra = fragility_html(frag, extra["fragility"], suite)
+    if site_hazard is not None:
+        years, extrapolate = args["years"], args["extrapolate"]
+        risk = site_risk(frag.fit, site_hazard, years=years, probability=probability,
+                         extrapolate=extrapolate)
+        if probability is not None:
+            d, trials = smallest_thickness(
+                arch, suite.motions, site_hazard, probability, years=years,
+                alpha=float(site_ds.attrs["alpha"]), ratio=site_ds["ratio"].values,
+                rule=thickness_rule, axis=replacement_axis, mass=replacement_mass, g=g,
+                extrapolate=extrapolate)
+            risk = replace(risk, thickness=d, trials=trials)
+        extra["risk"] = risk.to_dict()
     if report is not None:
         cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
                f"--thickness {thickness:g} "
@@ -240,7 +274,7 @@ def design(
                f"ap,min = {c.ap_min:.4f} m/s²")
     typer.echo(f"site {curve} at p: ap/ap,min = {res.ratio:.4f} -> safe PGA "
                f"{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
-    if extra:
+    if extra.get("fragility"):
         f = extra["fragility"]
         typer.echo(f"fragility of the replacement over {f['n_records']} records: median PGA "
                    f"{f['median']:.3f} m/s², beta {f['beta']:.3f}")
@@ -248,28 +282,98 @@ def design(
             if key in f:
                 typer.echo(f"  P(collapse) = {f[key]['probability']:.3g} at PGA "
                            f"{f[key]['pga']:.3f} m/s²")
+    if site_hazard is not None:
+        _print_risk(risk)
     if report is not None:
         typer.echo(f"wrote {report}")
+
+
+#: design options that need --records (a --site file holds its own curves).
+_RECORDS_ONLY = ("pga", "probability", "percentile", "units", "ratio_max", "save_site")
+
+
+def _check_design_inputs(opt: dict, records: list[Path]) -> None:
+    """What ``rockarch design`` can check before any computation: one of --site and
+    --records, the options that go with --records only, and the numbers of the fragility."""
+    if (opt["site_file"] is None) == (not records):
+        raise ValueError("give either --site FILE or --records DIR")
+    if opt["site_file"] is not None:
+        extra = [k for k in _RECORDS_ONLY if opt[k] is not None]
+        if extra:
+            raise ValueError(f"--{extra[0].replace('_', '-')} goes with --records (a --site "
+                             "file holds its own curves)")
+    if opt["pga"] is not None:
+        positive("--pga [m/s²]", opt["pga"])
+    if opt["probability"] is not None:
+        in_range("--probability", opt["probability"], 0.0, 1.0, lo_open=True, hi_open=True)
+    if opt["percentile"] is not None:
+        in_range("--percentile", opt["percentile"], 0.0, 100.0)
+
+
+def _hazard(opt: dict, records: bool):
+    """The hazard curve of design --hazard (None without it); --probability's meaning
+    follows (docs/sites.md, "Risk")."""
+    for name in ("site_row", "extrapolate"):
+        if opt[name] not in (None, False) and opt["hazard"] is None:
+            raise ValueError(f"--{name.replace('_', '-')} goes with --hazard FILE")
+    if opt["hazard"] is None:
+        if opt["years"] != 50.0:
+            raise ValueError("--years goes with --hazard FILE (the probability of collapse "
+                             "in N years at the site)")
+        return None
+    if not records:
+        raise ValueError("--hazard needs --records: the fragility comes from the records' "
+                         "IDA (a site file holds no fragility)")
+    check_years(opt["years"])
+    if opt["probability"] is not None and not 0 < opt["probability"] < 1:
+        raise ValueError(f"--probability must lie in (0, 1), got {opt['probability']}")
+    curve = hazard_of(opt["hazard"], opt["site_row"])
+    if curve.im != "pga":
+        raise ValueError(f"the design's fragility is in PGA: give a PGA hazard curve "
+                         f"({opt['hazard']} is in {curve.label}; `rockarch risk` takes any "
+                         "IM)")
+    return curve
+
+
+def _conditional(opt: dict) -> float | None:
+    """--probability as the design summary's P(collapse | PGA): default 0.1; none with
+    --hazard (there it is the target in --years)."""
+    if opt["hazard"] is not None:
+        return None
+    return 0.1 if opt["probability"] is None else opt["probability"]
+
+
+def _print_risk(risk) -> None:
+    r, c = risk.result, risk.hazard
+    typer.echo(f"risk at the site of {Path(c.source).name} ({c.label} {c.x[0] / c.factor:.4g} … "
+               f"{c.x[-1] / c.factor:.4g} {c.units}): annual frequency of collapse "
+               f"{r.annual_rate:.3g} /yr, P(collapse in {r.years:g} years) = "
+               f"{r.probability:.3g}")
+    if risk.target is not None:
+        typer.echo(f"  P(collapse in {r.years:g} years) <= {risk.target:g} up to "
+                   f"{risk.scale:.3g} x the site's hazard (ground motions "
+                   f"{risk.scale:.3g} times as strong)")
+    if risk.thickness is not None:
+        typer.echo(f"  P(collapse in {r.years:g} years) <= {risk.target:g} at the site's "
+                   f"hazard from a thickness of {risk.thickness:.3f} m "
+                   f"({len(risk.trials)} thicknesses tried, bisection to 1 %)")
 
 
 #: design options of --system only (the arch design by the replacement catenary refuses them).
 _SYSTEM_ONLY = ("alpha", "p", "blocks", *(name for name, _, _ in STRUCTURE), "mass_ratio",
                 "delta", "ap_min", "ratio_max")
 #: design options of the arch design only (with their defaults: given when they differ).
-_ARCH_ONLY = {"thickness_rule": "equivalent", "replacement_axis": "catenary",
-              "replacement_mass": "own", "save_site": None}
+_ARCH_ONLY = ("thickness_rule", "replacement_axis", "replacement_mass", "save_site")
 
 
 def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     """``rockarch design --system KIND``: ra.system from the options, then
     :func:`rockarch.design.design_system` (records: its IDA; --site: equivalent SDOF)."""
     kind = opt["system"].value
-    extra = [k for k, v in _ARCH_ONLY.items() if opt[k] != v]
+    extra = [k for k in _ARCH_ONLY if opt[k] is not None]
     if extra:
         raise ValueError(f"--{extra[0].replace('_', '-')} belongs to the arch design (without "
                          "--system)")
-    if (opt["site_file"] is None) == (not records):
-        raise ValueError("give either --site FILE or --records DIR")
     check_outputs((opt["report"], "--report", "html"))
     if kind in ("frame", "sdof") and opt["p"] is None:
         raise ValueError(f"--system {kind} needs --p (its frequency parameter [1/s])")
@@ -281,8 +385,10 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          blocks=opt["blocks"], mass_ratio=opt["mass_ratio"],
                          delta=opt["delta"], ap_min=opt["ap_min"], g=opt["g"],
                          t_free=opt["t_free"], **mdof_structure(opt))
-    kw = {"curve": opt["curve"], "percentile": opt["percentile"], "g": opt["g"],
-          "pga": opt["pga"], "probability": opt["probability"]}
+    site_hazard = _hazard(opt, bool(records))
+    kw = {"curve": opt["curve"],
+          "percentile": 50.0 if opt["percentile"] is None else opt["percentile"],
+          "g": opt["g"], "pga": opt["pga"], "probability": _conditional(opt)}
     suite = None
     if opt["site_file"] is not None:
         res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
@@ -290,8 +396,9 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     else:
         if opt["ratio_steps"] < 2 or (opt["ratio_max"] or 2.0) <= 1:
             raise ValueError("the IDA scan needs --ratio-steps >= 2 and --ratio-max > 1")
-        if opt["bootstrap"] < 0:
-            raise ValueError(f"--bootstrap must be >= 0, got {opt['bootstrap']}")
+        if not 0 <= opt["bootstrap"] <= fr.MAX_BOOTSTRAP:
+            raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got "
+                             f"{opt['bootstrap']}")
         ratios = ratio_grid(1.0, opt["ratio_max"], opt["ratio_steps"])
         suite = read_records(records, opt["units"])
         with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
@@ -304,12 +411,21 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     if res.ratio_is_lower_bound:
         echo_err("warning: the site curve does not collapse the structure within the ratio "
                  "range; the safe PGA is a lower bound")
+    risk = None
+    if site_hazard is not None:
+        if res.fragility is None or res.fragility.fit is None:
+            raise ValueError("--hazard needs a fragility: fewer than two records collapse "
+                             "(raise --ratio-max)")
+        risk = site_risk(res.fragility.fit, site_hazard, years=opt["years"],
+                         probability=opt["probability"], extrapolate=opt["extrapolate"])
     if opt["report"] is not None:
         write_system_report(res, opt["report"], command=_command_line(opt), suite=suite)
     if json_out:
-        print_json(res.to_dict())
+        print_json(res.to_dict() | ({} if risk is None else {"risk": risk.to_dict()}))
         return
     _print_system_design(res)
+    if risk is not None:
+        _print_risk(risk)
     if opt["report"] is not None:
         typer.echo(f"wrote {opt['report']}")
 

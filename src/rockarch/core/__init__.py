@@ -9,7 +9,8 @@ Modules: :mod:`~rockarch.core.constants` (g, time-step factors, tolerances),
 :mod:`~rockarch.core.limits` (memory and work estimated before allocating),
 :mod:`~rockarch.core.response` (``Response``, ``Batch``), :mod:`~rockarch.core.paths`
 (output formats, the output-path check, atomic and staged writes),
-:mod:`~rockarch.core.jit_cache` (numba's cache keyed by the source digest) and
+:mod:`~rockarch.core.jit_cache` (numba's cache keyed by the source digest),
+:mod:`~rockarch.core.console` (warnings as one line on stderr) and
 :mod:`~rockarch.core.sweep` (how sweeps run and where finished chunks are kept; docs/sweeps.md).
 """
 

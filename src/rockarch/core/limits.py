@@ -33,9 +33,21 @@ MAX_STEPS = 50_000_000
 MAX_MDOF_STEPS = 20_000_000
 #: Largest size of a recorded MDOF history [bytes]; above it every k-th step is recorded.
 MAX_HISTORY_BYTES = 400_000_000
+#: Most records of one suite (read, or written by ``records synth``).
+MAX_RECORDS = 10_000
+#: Most samples of all the records of a suite held in memory together (16 bytes each:
+#: 2e7 samples are 320 MB).
+MAX_SUITE_SAMPLES = 20_000_000
+#: Most blocks of an MDOF structure (its limit analysis and its contact dynamics grow
+#: with the number of joints: a 200-block wall takes about a minute to build).
+MAX_BLOCKS = 500
+#: Most voussoirs of an arch's thrust-line LP (about 3.5 kB each: 1e5 are 350 MB).
+MAX_VOUSSOIRS = 100_000
 
 ENV = {"samples": "ROCKARCH_MAX_SAMPLES", "steps": "ROCKARCH_MAX_STEPS",
-       "mdof_steps": "ROCKARCH_MAX_MDOF_STEPS",
+       "mdof_steps": "ROCKARCH_MAX_MDOF_STEPS", "records": "ROCKARCH_MAX_RECORDS",
+       "suite_samples": "ROCKARCH_MAX_SUITE_SAMPLES", "blocks": "ROCKARCH_MAX_BLOCKS",
+       "voussoirs": "ROCKARCH_MAX_VOUSSOIRS",
        "simulations": "ROCKARCH_MAX_SIMULATIONS"}  # rockarch.core.sweep.limits
 
 
@@ -68,6 +80,37 @@ def max_mdof_steps() -> int:
     return _limit("mdof_steps", MAX_MDOF_STEPS)
 
 
+def max_records() -> int:
+    """Largest number of records of a suite (env ``ROCKARCH_MAX_RECORDS``)."""
+    return _limit("records", MAX_RECORDS)
+
+
+def max_suite_samples() -> int:
+    """Largest number of samples of a suite in memory (env ``ROCKARCH_MAX_SUITE_SAMPLES``)."""
+    return _limit("suite_samples", MAX_SUITE_SAMPLES)
+
+
+def max_blocks() -> int:
+    """Largest number of blocks of an MDOF structure (env ``ROCKARCH_MAX_BLOCKS``)."""
+    return _limit("blocks", MAX_BLOCKS)
+
+
+def max_voussoirs() -> int:
+    """Largest number of voussoirs of an arch's limit analysis (env
+    ``ROCKARCH_MAX_VOUSSOIRS``)."""
+    return _limit("voussoirs", MAX_VOUSSOIRS)
+
+
+def check_count(what: str, n: int, key: str, hint: str) -> int:
+    """``n`` (records, blocks, ...) if at most the limit of ``key``, else the one-line
+    error of :func:`too_many`, before anything of that size is built."""
+    limit = _limit(key, _DEFAULT[key])
+    if n > limit:
+        raise ValueError(f"{what} has {n:,} {_UNIT[key]}, above the limit of {limit:,} "
+                         f"({ENV[key]}); {hint}, or raise {ENV[key]}")
+    return n
+
+
 def too_many(what: str, needed: float, key: str, limit: int, hint: str) -> ValueError:
     """The one-line error of a bound: what needs how much, the limit and how to raise it."""
     verb = "may need up to" if key == "steps" else "needs"
@@ -75,4 +118,9 @@ def too_many(what: str, needed: float, key: str, limit: int, hint: str) -> Value
                       f"{limit:.3g} ({ENV[key]}); {hint}, or raise {ENV[key]}")
 
 
-_UNIT = {"samples": "samples", "steps": "integration steps", "mdof_steps": "time steps"}
+_UNIT = {"samples": "samples", "steps": "integration steps", "mdof_steps": "time steps",
+         "records": "records", "suite_samples": "samples", "blocks": "blocks",
+         "voussoirs": "voussoirs"}
+_DEFAULT = {"samples": MAX_SAMPLES, "steps": MAX_STEPS, "mdof_steps": MAX_MDOF_STEPS,
+            "records": MAX_RECORDS, "suite_samples": MAX_SUITE_SAMPLES, "blocks": MAX_BLOCKS,
+            "voussoirs": MAX_VOUSSOIRS}

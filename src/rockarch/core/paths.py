@@ -32,6 +32,7 @@ FORMATS: dict[str, OutputFormat] = {f.name: f for f in (
     OutputFormat("png", (".png",), "PNG image"),
     OutputFormat("html", (".html", ".htm"), "HTML page"),
     OutputFormat("gif", (".gif",), "GIF animation"),
+    OutputFormat("json", (".json",), "JSON file"),
 )}
 
 

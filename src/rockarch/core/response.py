@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rockarch.core.validate import P_MAX
+from rockarch.core.validate import P_MAX, P_MIN, RATIO_MAX, numbers
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -88,17 +88,24 @@ def run_batch(p, ratio, run: Callable[[np.ndarray, np.ndarray], tuple], *,
     pairs, so that the numba threads share early-ending runs evenly) and returns the kernel
     arrays (status, t_overturn, max ratio, impacts, *extras); status 1 means collapse.
     """
-    p_arr, r_arr = np.broadcast_arrays(np.asarray(p, dtype=float),
-                                       np.asarray(ratio, dtype=float))
+    p, ratio = numbers("p", p), numbers("ratio", ratio)
+    try:
+        p_arr, r_arr = np.broadcast_arrays(p, ratio)
+    except ValueError:
+        raise ValueError(f"p and ratio must broadcast together, got shapes {p.shape} and "
+                         f"{ratio.shape}") from None
     shape = p_arr.shape
     pf = np.ascontiguousarray(p_arr.ravel())
     rf = np.ascontiguousarray(r_arr.ravel())
     if pf.size and not (np.all(np.isfinite(pf)) and np.all(pf > 0)):
         raise ValueError("p must be a finite number > 0 for every run")
-    if pf.size and np.max(pf) > P_MAX:
-        raise ValueError(f"p must lie in (0, {P_MAX:g}] 1/s, got {np.max(pf):g}")
+    if pf.size and (np.max(pf) > P_MAX or np.min(pf) < P_MIN):
+        bad = np.max(pf) if np.max(pf) > P_MAX else np.min(pf)
+        raise ValueError(f"p must lie in [{P_MIN:g}, {P_MAX:g}] 1/s, got {bad:g}")
     if rf.size and not (np.all(np.isfinite(rf)) and np.all(rf >= 0)):
         raise ValueError("ratio ap/ap,min must be finite and >= 0")
+    if rf.size and np.max(rf) > RATIO_MAX:
+        raise ValueError(f"ratio ap/ap,min must be at most {RATIO_MAX:g}, got {np.max(rf):g}")
     perm = np.random.default_rng(0).permutation(pf.size)
     out = run(np.ascontiguousarray(pf[perm]), np.ascontiguousarray(rf[perm]))
     inv = np.empty_like(perm)

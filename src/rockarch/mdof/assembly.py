@@ -23,8 +23,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rockarch.arch import analyse, voussoirs
+from rockarch.core import limits
 from rockarch.core.constants import G
-from rockarch.core.validate import positive
+from rockarch.core.validate import integer, positive, show
 
 
 @dataclass(frozen=True)
@@ -161,12 +162,14 @@ def stack(rects, *, g: float = G, name: str | None = None) -> Assembly:
         raise ValueError("column block coordinates must be finite numbers")
     if np.any(r[:, 2] <= 0) or np.any(r[:, 3] <= 0):
         raise ValueError("column blocks need a width and a height > 0")
+    if np.abs(r).max() > 1e5 or r[:, 3].sum() > 1e5:
+        raise ValueError("column blocks must lie within 1e5 m (sizes in metres)")
     scale = float(r[:, 3].sum())
     tol = 1e-9 * scale
     if abs(r[0, 1]) > tol:
         raise ValueError(f"the first block must stand on the ground (y_bottom = 0), got "
                          f"{r[0, 1]:g}")
-    nb_ = r.shape[0]
+    nb_ = limits.check_count("a column", r.shape[0], "blocks", "use fewer blocks")
     mass, cen, ine, corners, polys = [], [], [], [], []
     for k in range(nb_):
         x0, y0, w, h = r[k]
@@ -217,7 +220,7 @@ def column(blocks, *, g: float = G, name: str | None = None) -> Assembly:
         b = tuple(b)
         if len(b) not in (2, 3):
             raise ValueError(f"column block {i}: give (width, height) or (width, height, "
-                             f"x_centre), got {b!r}")
+                             f"x_centre), got {show(b)}")
         w = positive(f"width of block {i}", b[0])
         h = positive(f"height of block {i}", b[1])
         xc = float(b[2]) if len(b) == 3 else 0.0
@@ -250,10 +253,7 @@ def arch_assembly(arch, n: int, *, g: float = G) -> Assembly:
     four-hinge (critical) mechanism. Raises ValueError if n is too small or the arch cannot
     stand.
     """
-    try:
-        n = int(n)
-    except (TypeError, ValueError):
-        raise ValueError(f"number of voussoirs must be an integer, got {n!r}") from None
+    n = integer("number of voussoirs (blocks)", n)
     if n < MIN_VOUSSOIRS:
         raise ValueError(f"an MDOF arch needs at least {MIN_VOUSSOIRS} voussoirs, got {n}")
     if n > 400:

@@ -26,9 +26,14 @@ import json
 import math
 from pathlib import Path
 
+from rockarch.core import limits
 from rockarch.core.constants import G
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.builders import friction_value, from_polygons
+
+#: Largest size of an assembly file per block allowed by the block limit (a polygon of
+#: hundreds of vertices).
+MAX_BYTES_PER_BLOCK = 20_000
 
 _TOP = {"name", "friction", "blocks", "supports", "contacts"}
 _BLOCK = {"polygon", "density", "name"}
@@ -56,6 +61,7 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
     blocks = data.get("blocks")
     if not isinstance(blocks, list) or not blocks:
         raise ValueError(f"{source}: 'blocks' must be a non-empty list of blocks")
+    limits.check_count(source, len(blocks), "blocks", "use fewer blocks")
     polys, dens, names = [], [], []
     for i, b in enumerate(blocks):
         _keys(b, _BLOCK, f"{source}: block {i}")
@@ -96,10 +102,19 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
 def read_assembly(path, *, mu=None, g: float = G) -> Assembly:
     """The assembly of a JSON file (:func:`assembly_from_dict`); one-line ValueErrors."""
     p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"{p}: no such file" if not p.exists() else f"{p}: not a file")
+    size = p.stat().st_size
+    if size > MAX_BYTES_PER_BLOCK * limits.max_blocks():
+        raise ValueError(f"{p}: {size / 1e6:.3g} MB is too large for an assembly of at most "
+                         f"{limits.max_blocks()} blocks ({limits.ENV['blocks']})")
     try:
-        text = p.read_text()
+        text = p.read_text(encoding="utf-8")
     except OSError as exc:
         raise ValueError(f"{p}: cannot read ({exc.strerror or exc})") from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{p}: not a UTF-8 text file (byte {exc.start}): an assembly is a "
+                         "JSON file") from None
     try:
         data = json.loads(text, parse_constant=lambda c: math.nan)
     except json.JSONDecodeError as exc:

@@ -27,8 +27,9 @@ from dataclasses import replace
 import numpy as np
 
 from rockarch.arch import Arch, voussoirs
+from rockarch.core import limits
 from rockarch.core.constants import G
-from rockarch.core.validate import positive
+from rockarch.core.validate import integer, positive
 from rockarch.mdof import polygons as pg
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.statics import LAMBDA_CAP, collapse, limit_analysis
@@ -36,11 +37,24 @@ from rockarch.mdof.statics import LAMBDA_CAP, collapse, limit_analysis
 #: Largest friction coefficient accepted: above it the limit-analysis LP loses its accuracy
 #: (μ = 1e10 gave an ap,min 6000 times too low), and no real joint comes near it.
 MU_MAX = 1e6
+#: Smallest friction coefficient accepted (ice on ice is ~0.02; below 1e-3 the collapse
+#: acceleration μ·g underflows the motions scaled to it).
+MU_MIN = 1e-3
+
+
+def check_block_count(n: int, what: str = "the structure") -> int:
+    """``n`` blocks if at most :func:`rockarch.core.limits.max_blocks`, else ValueError
+    before anything is built (the limit analysis and the contact dynamics grow with the
+    joints: a 400-block wall takes minutes to build)."""
+    return limits.check_count(what, n, "blocks", "use fewer or larger blocks")
 
 
 def friction_value(mu, name: str = "friction coefficient") -> float:
-    """A friction coefficient: a finite number in (0, ``MU_MAX``] (ValueError otherwise)."""
+    """A friction coefficient: a finite number in [``MU_MIN``, ``MU_MAX``] (ValueError
+    otherwise)."""
     mu = positive(name, mu)
+    if mu < MU_MIN:
+        raise ValueError(f"{name} must be at least {MU_MIN:g}, got {mu:g}")
     if mu > MU_MAX:
         raise ValueError(f"{name} must be at most {MU_MAX:g}, got {mu:g} (for joints that "
                          "never slide, give no friction)")
@@ -79,7 +93,7 @@ def assemble(*, name: str, kind: str, mass, inertia, centroid, polygons, joints,
     """
     g = positive("g", g)
     mass = np.asarray(mass, float)
-    nb_ = len(mass)
+    nb_ = check_block_count(len(mass), name)
     names = list(names) if names is not None else [f"block {i}" for i in range(nb_)]
     body_a = np.array([j[0] for j in joints], dtype=np.int64)
     body_b = np.array([j[1] for j in joints], dtype=np.int64)
@@ -178,6 +192,7 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
         Non-convex or self-intersecting polygons, overlapping blocks, a block touching
         nothing or not connected to the ground, a structure that cannot stand.
     """
+    check_block_count(len(polygons), name)
     names = list(names) if names is not None else [f"block {i}" for i in
                                                     range(len(polygons))]
     polys = [pg.convex_polygon(p, names[i]) for i, p in enumerate(polygons)]
@@ -257,6 +272,8 @@ def wall(rows: int, columns: int, width: float, height: float, *, mu=None, g: fl
     """A wall in running bond: ``rows`` courses of ``columns`` blocks width × height [m];
     every second course is offset by half a block, with half blocks at both ends."""
     rows, columns = _count("wall rows", rows, 1), _count("wall columns", columns, 1)
+    # every second course has a half block at each end: one block more
+    check_block_count(rows * columns + rows // 2, f"a wall of {rows} x {columns} blocks")
     w, h = positive("block width", width), positive("block height", height)
     polys, names = [], []
     for r in range(rows):
@@ -278,6 +295,7 @@ def colonnade(n_columns: int, width: float, height: float, spacing: float,
     columns: a trilithon)."""
     n = _count("columns of a colonnade", n_columns, 2)
     drums = _count("drums per column", drums, 1)
+    check_block_count(n * drums + 1, f"a colonnade of {n} columns")
     b, hc = positive("column width", width), positive("column height", height)
     s, d = positive("column spacing", spacing), positive("lintel depth", lintel_depth)
     polys, names = [], []
@@ -296,12 +314,9 @@ def colonnade(n_columns: int, width: float, height: float, spacing: float,
 
 
 def _count(name: str, value, least: int) -> int:
-    try:
-        v = int(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an integer, got {value!r}") from None
-    if v != value or v < least:
-        raise ValueError(f"{name} must be an integer >= {least}, got {value!r}")
+    v = integer(name, value)
+    if v < least:
+        raise ValueError(f"{name} must be an integer >= {least}, got {v}")
     return v
 
 
@@ -327,6 +342,11 @@ def bridge(arch: Arch, n_voussoirs: int, *, spans: int = 1, pier_height: float,
     spans = _count("--spans", spans, 1)
     abut = spans > 1 if abutments is None else bool(abutments)
     hp, bp = positive("--pier-height", pier_height), positive("--pier-width", pier_width)
+    n_piers = spans + 1 - 2 * abut
+    per_pier = _count("pier blocks", pier_blocks, 1) if pier_blocks is not None else \
+        max(1, round(min(hp / bp, 1e12)))
+    check_block_count(spans * _count("voussoirs", n_voussoirs, 1) + n_piers * per_pier,
+                      f"a bridge of {spans} span(s)")
     v = voussoirs(arch, n_voussoirs)
     n = v.n
     ip, ep = v.intrados, v.extrados

@@ -29,6 +29,10 @@ def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
 
 
+#: Largest |coordinate| of a block [m] (masses and inertias ~ size⁴ stay finite).
+MAX_COORDINATE = 1e5
+
+
 def convex_polygon(points, name: str = "block") -> np.ndarray:
     """``points`` as a (K, 2) counter-clockwise convex polygon, or ValueError.
 
@@ -44,6 +48,9 @@ def convex_polygon(points, name: str = "block") -> np.ndarray:
         raise ValueError(f"{name}: a polygon needs at least 3 [x, y] points")
     if not np.all(np.isfinite(p)):
         raise ValueError(f"{name}: polygon coordinates must be finite numbers")
+    if np.abs(p).max() > MAX_COORDINATE:
+        raise ValueError(f"{name}: polygon coordinates must lie within ±{MAX_COORDINATE:g} m "
+                         f"(metres), got {np.abs(p).max():.3g}")
     size = float(np.ptp(p, axis=0).max())
     if size <= 0:
         raise ValueError(f"{name}: the polygon has no area")

@@ -184,6 +184,9 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
     def run(pf, rf):
         scales = (pr / pf) ** 2
         hs = h_factor / (assembly.p_ref / np.sqrt(scales))
+        if hs.size:  # the longest run's steps and history, before any (Eq. 8.7)
+            _plan(float(unit.duration + t_free), float(np.min(hs)), assembly.n_blocks,
+                  assembly.n_joints, 1)
         args = (model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
                 float(unit.duration + t_free), float(unit.duration), gap_tol)
         if chain:

@@ -196,10 +196,21 @@ def _oscillator_coefficients(omega: float, zeta: float, h: float) -> np.ndarray:
     return np.array([uu, uv, vu, vv, ua, va, us, vs])
 
 
+#: Periods of Sa(T) accepted [s]: shorter ones need dt·N/T sub-steps per sample (1e-3 s:
+#: 1500 at dt = 0.01 s), longer ones a free vibration of T/2 after the motion.
+PERIOD_RANGE = (1e-3, 100.0)
+#: Most periods of one call (each is a pass over the record).
+MAX_PERIODS = 1000
+
+
 def _check_periods(periods) -> np.ndarray:
-    per = finite_array("periods", np.atleast_1d(np.asarray(periods, dtype=float)))
-    if np.any(per <= 0.0):
-        raise ValueError(f"periods must be > 0 s, got {per[per <= 0.0][0]:g}")
+    per = finite_array("periods", np.atleast_1d(periods))
+    lo, hi = PERIOD_RANGE
+    bad = per[(per < lo) | (per > hi)]
+    if bad.size:
+        raise ValueError(f"periods of Sa(T) must lie in [{lo:g}, {hi:g}] s, got {bad[0]:g}")
+    if per.size > MAX_PERIODS:
+        raise ValueError(f"at most {MAX_PERIODS} periods of Sa(T), got {per.size}")
     return per
 
 

@@ -9,7 +9,9 @@ scales every record to a target PGA, this constant never changes an OAS.
 from __future__ import annotations
 
 import math
+import os
 import re
+import warnings
 from importlib import resources
 from pathlib import Path
 
@@ -18,6 +20,7 @@ import numpy as np
 #: Standard gravity [m/s²] used to convert records given in units of g.
 from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD
+from rockarch.core.validate import show
 from rockarch.motion.signals import GroundMotion
 
 _UNITS = {  # factor to m/s²
@@ -39,6 +42,15 @@ def _units_factor(unit: str) -> float:
 
 def _read_text(path: Path) -> str:
     path = Path(path)
+    _check_file(path)
+    try:
+        return path.read_text(encoding="latin-1")
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+
+
+def _check_file(path: Path) -> None:
+    """An existing record file of a size that its sample limit allows."""
     if not path.exists():
         raise ValueError(f"{path}: no such file")
     if path.is_dir():
@@ -47,10 +59,6 @@ def _read_text(path: Path) -> str:
     if size > 64 * limits.max_samples():  # a text sample takes at most ~40 characters
         raise limits.too_many(f"{path} ({size / 1e6:.0f} MB)", size / 40, "samples",
                               limits.max_samples(), "shorten the record")
-    try:
-        return path.read_text(encoding="latin-1")
-    except OSError as exc:
-        raise ValueError(f"{path}: cannot be read ({exc.strerror or exc})") from None
 
 
 def _check_samples(path, acc: np.ndarray) -> None:
@@ -74,36 +82,135 @@ def read_at2(path: str | Path) -> GroundMotion:
     text = _read_text(path)
     if "\x00" in text[:8192]:
         raise ValueError(f"{path}: a binary file, not a PEER .AT2 text file")
-    lines = text.splitlines()
-    if len(lines) < 4:
+    header = text[:65536].splitlines()[:4]
+    if len(header) < 4:
         raise ValueError(f"{path}: not a PEER .AT2 file (fewer than 4 header lines)")
-    header = lines[:4]
     m = _NEW_HEADER.search(header[3]) or _OLD_HEADER.search(header[3])
     if m is None:
         raise ValueError(f"{path}: not a PEER .AT2 file (line 4 should give NPTS and DT, "
                          f"found {header[3].strip()!r})")
     npts = int(m.group(1))
+    if npts > limits.max_samples():  # before the values are parsed
+        raise limits.too_many(f"{path} (NPTS={npts})", npts, "samples", limits.max_samples(),
+                              "shorten or decimate the record")
     dt = float(m.group(2).replace("D", "E").replace("d", "e"))
     if not (dt > 0 and math.isfinite(dt)):
         raise ValueError(f"{path}: DT must be > 0, found {dt}")
+    _check_dt(path, dt)
     unit_line = header[2].upper()
     if "ACCELERATION" not in unit_line:
         raise ValueError(f"{path}: not an acceleration record (line 3: {header[2].strip()!r})")
     um = re.search(r"UNITS\s+OF\s+(\S+)", unit_line)
     factor = _units_factor(um.group(1)) if um else G_STANDARD
-    try:
-        values = np.array(" ".join(lines[4:]).replace("D", "E").split(), dtype=float)
-    except ValueError:
+    cut = 0
+    for _ in range(4):  # the values after the four header lines
+        cut = text.find("\n", cut) + 1 if cut >= 0 else cut
+        cut = cut if cut > 0 else -1
+    body = "" if cut < 0 else text[cut:].replace("D", "E").replace("d", "e")
+    try:  # numpy's C parser: 8 bytes per value, no Python float objects
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
+            values = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
+    except (ValueError, DeprecationWarning):
         raise ValueError(f"{path}: the sample values are not all numbers") from None
     if values.size != npts:
         raise ValueError(f"{path}: header says NPTS={npts} but the file holds {values.size} "
                          "values (truncated or corrupted file)")
     _check_samples(path, values)
+    values = values * factor
+    check_acceleration(path, values)
     t = np.arange(npts) * dt
     title = header[1].strip()
     meta = {"source": str(path), "title": title, "dt": dt, "npts": npts, "format": "AT2",
             "units_in_file": um.group(1) if um else "G"}
-    return GroundMotion(t, values * factor, f"{path.name} ({title})", meta)
+    return GroundMotion(t, values, f"{path.name} ({title})", meta)
+
+
+#: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
+#: acceleration record in the units given, and its integrals (PGV, Arias) would overflow.
+MAX_ACCELERATION = 1e5 * G_STANDARD
+#: Largest peak (in the file's own numbers) of a two-column record read without units that
+#: is also a plausible peak in g: such a record is read as m/s² with a warning.
+G_LIKE_PEAK = 2.0
+#: Largest plausible PGA [m/s²] (5 g): above it a record read without units warns.
+MAX_PLAUSIBLE_PGA = 5.0 * G_STANDARD
+
+_SEPARATORS = str.maketrans(",;\t", "   ")
+
+
+def _lines(path: Path):
+    """The file's lines, one at a time (latin-1: every byte is a character)."""
+    with open(path, encoding="latin-1", newline=None) as f:
+        first = f.readline()
+        yield first.removeprefix("\xef\xbb\xbf")  # a UTF-8 byte-order mark, read as latin-1
+        yield from f
+
+
+def _sample_lines(path: Path, comment: str):
+    """(line number, stripped line) of every line that is not blank or a comment."""
+    for k, line in enumerate(_lines(path), start=1):
+        s = line.strip()
+        if s and not s.startswith(comment):
+            yield k, s
+
+
+def _two_numbers(path, k: int, s: str) -> tuple[float, float] | None:
+    """The two numbers of sample line ``k``; None for a text line; ValueError otherwise."""
+    parts = re.split(r"[\s,;]+", s)
+    try:
+        vals = [float(v) for v in parts]
+    except ValueError:
+        return None
+    if len(vals) != 2:
+        raise ValueError(f"{path}: line {k} has {len(vals)} column(s), expected 2 "
+                         "(time, acceleration)")
+    return vals[0], vals[1]
+
+
+def _diagnose(path, comment: str) -> None:
+    """Find the first bad line of a two-column file (the fast parser refused it) and raise
+    the error that names it; streams the lines, keeps none."""
+    started = False
+    for k, s in _sample_lines(path, comment):
+        vals = _two_numbers(path, k, s)
+        if vals is None:
+            if started:
+                raise ValueError(f"{path}: line {k} is not two numbers: {s[:60]!r}")
+            continue  # a header line such as "time acc"
+        started = True
+        if not all(math.isfinite(v) for v in vals):
+            raise ValueError(f"{path}: line {k} holds a value that is not a finite number")
+    raise ValueError(f"{path}: cannot be read as two columns (time, acceleration)")
+
+
+def _line_of_sample(path: Path, comment: str, skip: int, index: int) -> int:
+    """Line number of sample ``index`` (0-based) after the ``skip`` header lines."""
+    for n, (k, _) in enumerate(_sample_lines(path, comment)):
+        if n == index + skip:
+            return k
+    return -1
+
+
+#: Time steps a record may have [s] (strong-motion records: 0.001 … 0.05 s).
+DT_RANGE = (1e-5, 1.0)
+
+
+def _check_dt(path, dt: float) -> None:
+    lo, hi = DT_RANGE
+    if not lo <= dt <= hi:
+        raise ValueError(f"{path}: time step {dt:.3g} s is not that of a strong-motion record "
+                         f"(it must lie in [{lo:g}, {hi:g}] s): check the time column")
+
+
+def check_acceleration(path, acc: np.ndarray) -> None:
+    """Samples [m/s²] that an acceleration record can hold: |a| <= :data:`MAX_ACCELERATION`
+    (ValueError naming the file, the sample and the units to check)."""
+    big = np.flatnonzero(np.abs(acc) > MAX_ACCELERATION)
+    if big.size:
+        k = int(big[0])
+        raise ValueError(f"{path}: sample {k} is {float(acc[k]):.3g} m/s², not a plausible "
+                         f"ground acceleration (above {MAX_ACCELERATION:.3g} m/s² = 1e5 g): "
+                         "check the file and its units")
 
 
 def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#",
@@ -114,70 +221,107 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
     ``comment`` are skipped, and so are text lines before the first sample (a header such
     as ``time acc``). Every sample line holds exactly two numbers. The time step must be
     uniform (relative tolerance ``rtol``, for rounding in the file); resample a non-uniform
-    record before using it. Every error names the file and the line.
+    record before using it. Every error names the file and the line. At most
+    :func:`rockarch.core.limits.max_samples` samples (counted from the lines before they are
+    parsed; numpy's C parser keeps the memory at 16 bytes per sample).
     """
     path = Path(path)
     factor = _units_factor(units)
-    text = _read_text(path)
-    if "\x00" in text[:8192]:
-        raise ValueError(f"{path}: a binary file, not a text record (time, acceleration)")
-    rows, lines = [], []
-    for k, line in enumerate(text.splitlines(), start=1):
-        s = line.strip()
-        if not s or s.startswith(comment):
-            continue
-        parts = re.split(r"[\s,;]+", s)
-        try:
-            vals = [float(v) for v in parts]
-        except ValueError:
-            if not rows:  # a header line such as "time acc"
-                continue
-            raise ValueError(f"{path}: line {k} is not two numbers: {s[:60]!r}") from None
-        if len(vals) != 2:
-            raise ValueError(f"{path}: line {k} has {len(vals)} column(s), expected 2 "
-                             "(time, acceleration)")
-        rows.append(vals)
-        lines.append(k)
-    if not rows:
+    _check_file(path)
+    with open(path, "rb") as f:
+        if b"\x00" in f.read(8192):
+            raise ValueError(f"{path}: a binary file, not a text record (time, acceleration)")
+        f.seek(0)
+        n_lines, last = 0, b"\n"
+        for chunk in iter(lambda: f.read(1 << 22), b""):
+            n_lines, last = n_lines + chunk.count(b"\n"), chunk[-1:]
+        n_lines += last != b"\n"  # a last line without its newline
+    limit = limits.max_samples()
+    if n_lines > limit + min(1000, limit // 100):  # a sample a line (and a few headers)
+        raise limits.too_many(f"{path} ({n_lines:,} lines)", n_lines, "samples", limit,
+                              "shorten or decimate the record")
+    skip, first = 0, None
+    for k, s in _sample_lines(path, comment):
+        if _two_numbers(path, k, s) is not None:
+            first = k
+            break
+        skip += 1
+        if skip > 1000:
+            break
+    if first is None:
         raise ValueError(f"{path}: no samples: a record needs at least 2 samples "
                          "(lines 'time acceleration')")
-    if len(rows) < 2:
-        raise ValueError(f"{path}: a record needs at least 2 samples, found {len(rows)}")
-    data = np.array(rows)
-    bad = np.flatnonzero(~np.isfinite(data).all(axis=1))
-    if bad.size:
-        raise ValueError(f"{path}: line {lines[int(bad[0])]} holds a value that is not a "
-                         "finite number")
+    try:  # numpy's C parser, fed line by line: 16 bytes per sample
+        data = np.loadtxt((line.translate(_SEPARATORS) for line in _lines(path)),
+                          comments=comment, skiprows=first - 1, ndmin=2, dtype=float)
+    except ValueError:
+        _diagnose(path, comment)
+    if data.shape[1] != 2:
+        _diagnose(path, comment)
+    if data.shape[0] < 2:
+        raise ValueError(f"{path}: a record needs at least 2 samples, found {data.shape[0]}")
+    if data.shape[0] > limit:
+        raise limits.too_many(str(path), data.shape[0], "samples", limit,
+                              "shorten or decimate the record")
+    if not np.isfinite(data).all():
+        _diagnose(path, comment)
     t, acc = data[:, 0], data[:, 1]
     _check_samples(path, acc)
     dts = np.diff(t)
     back = np.flatnonzero(dts <= 0)
     if back.size:
-        raise ValueError(f"{path}: time must increase (line {lines[int(back[0]) + 1]}: "
-                         f"t={t[back[0] + 1]:g} s after t={t[back[0]]:g} s)")
+        k = int(back[0])
+        line = _line_of_sample(path, comment, skip, k + 1)
+        raise ValueError(f"{path}: time must increase (line {line}: "
+                         f"t={t[k + 1]:g} s after t={t[k]:g} s)")
     dt = (t[-1] - t[0]) / (t.size - 1)
+    _check_dt(path, dt)
     typical = float(np.median(dts))
     off = np.flatnonzero(np.abs(dts - typical) > rtol * typical)
     if off.size:
         k = int(off[0])
-        raise ValueError(f"{path}: non-uniform time step at line {lines[k + 1]} "
+        line = _line_of_sample(path, comment, skip, k + 1)
+        raise ValueError(f"{path}: non-uniform time step at line {line} "
                          f"(dt={dts[k]:g} s, elsewhere {typical:g} s); resample to a uniform "
                          "dt first")
-    t_uniform = t[0] + np.arange(t.size) * dt
+    acc = acc * factor
+    check_acceleration(path, acc)
+    t_uniform = np.arange(t.size) * dt
     meta = {"source": str(path), "dt": dt, "npts": int(t.size), "format": "two-column",
             "units_in_file": units}
-    return GroundMotion(t_uniform - t[0], acc * factor, path.name, meta)
+    return GroundMotion(t_uniform, acc, path.name, meta)
 
 
 def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     """Read a record by its file type: ``.AT2`` as PEER, anything else as two-column text.
 
-    ``units`` applies to two-column files (default m/s2); AT2 files state their own.
+    ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
+    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2 files state
+    their own.
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a file path (str or Path), got {type(path).__name__}")
+    if units is not None and not isinstance(units, str):
+        raise TypeError(f"units must be a string such as 'm/s2', 'g' or 'cm/s2', got "
+                        f"{type(units).__name__}")
     path = Path(path)
     if path.suffix.lower() == ".at2":
         return read_at2(path)
-    return read_two_column(path, units=units or "m/s2")
+    motion = read_two_column(path, units=units or "m/s2")
+    if units is None and motion.pga <= G_LIKE_PEAK:
+        warnings.warn(UnitsWarning(
+            f"{path.name}: read as m/s² (no units given), but its peak {motion.pga:.3g} is "
+            f"also a plausible PGA in g: give --units m/s2 or --units g"), stacklevel=2)
+    elif units is None and motion.pga > MAX_PLAUSIBLE_PGA:
+        warnings.warn(UnitsWarning(
+            f"{path.name}: read as m/s² (no units given), its PGA {motion.pga:.4g} m/s² = "
+            f"{motion.pga / G_STANDARD:.3g} g is not plausible: wrong units? (--units cm/s2, "
+            "mm/s2 or g)"), stacklevel=2)
+    return motion
+
+
+class UnitsWarning(UserWarning):
+    """A two-column record read without units whose peak is also plausible in g."""
 
 
 _BUNDLED = {180: "RSN6_IMPVALL.I_I-ELC180-hor1.AT2", 270: "RSN6_IMPVALL.I_I-ELC270-hor2.AT2"}
@@ -186,7 +330,7 @@ _BUNDLED = {180: "RSN6_IMPVALL.I_I-ELC180-hor1.AT2", 270: "RSN6_IMPVALL.I_I-ELC2
 def bundled_record_path(component: int = 180) -> Path:
     """Path of a bundled El Centro 1940 component (180 or 270), see PROVENANCE.md."""
     if component not in _BUNDLED:
-        raise ValueError(f"bundled El Centro components are 180 and 270, got {component!r}")
+        raise ValueError(f"bundled El Centro components are 180 and 270, got {show(component)}")
     return Path(str(resources.files("rockarch.motion") / "data" / _BUNDLED[component]))
 
 

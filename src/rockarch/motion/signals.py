@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rockarch.core import limits
-from rockarch.core.validate import finite_array, positive
+from rockarch.core.validate import finite_array, integer, number, positive
 
 #: Knots per period used to sample smooth pulses (sine, half-sine, harmonic, Ricker).
 #: Linear interpolation of a sine with N knots per period has a peak error of
@@ -78,7 +78,7 @@ class GroundMotion:
 
     def scaled(self, factor: float) -> GroundMotion:
         """Return the motion multiplied by ``factor`` (any sign: -1 mirrors it)."""
-        f = float(factor)
+        f = number("factor", factor)
         if not math.isfinite(f):
             raise ValueError(f"scale factor must be finite, got {factor!r}")
         return GroundMotion(self.t, self.a * f, self.name, dict(self.meta))
@@ -166,7 +166,8 @@ def step(ap: float, period: float) -> GroundMotion:
     return GroundMotion(t, a, f"step T={period:g} s", {"signal": "step", "period": period})
 
 
-def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int = 3) -> GroundMotion:
+def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int | None = None
+          ) -> GroundMotion:
     """A pulse of the paper's family by name (Fig. 14; docs/theory.md Eqs. 8.1–8.3).
 
     Parameters
@@ -178,12 +179,18 @@ def pulse(signal: str, *, period: float, ap: float = 1.0, cycles: int = 3) -> Gr
     ap : float, optional
         Peak acceleration [m/s²]; 1 by default (``oas`` and ``simulate`` scale the shape).
     cycles : int, optional
-        Number of cycles of ``harmonic`` (ignored by the other signals).
+        Number of cycles of ``harmonic`` (default 3; the other signals refuse it).
     """
     makers = {"sine": sine, "square": square, "step": step, "halfsine": halfsine,
               "ricker": ricker}
-    if signal == "harmonic":
-        return harmonic(ap, period, cycles)
-    if signal not in makers:
+    if not isinstance(signal, str):
+        raise TypeError(f"signal must be one of {', '.join(SIGNALS)} (a string), got "
+                        f"{type(signal).__name__}")
+    if signal not in makers and signal != "harmonic":
         raise ValueError(f"unknown signal {signal!r}: choose one of {', '.join(SIGNALS)}")
+    period, ap = number("period", period), number("ap", ap)
+    if signal == "harmonic":
+        return harmonic(ap, period, 3 if cycles is None else integer("cycles", cycles))
+    if cycles is not None:
+        raise ValueError(f"cycles (--cycles) goes with the harmonic signal, not {signal}")
     return makers[signal](ap, period)

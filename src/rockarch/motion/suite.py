@@ -10,20 +10,24 @@ Without the csv, event, station and component come from the ``.AT2`` header line
 
 from __future__ import annotations
 
+import collections
 import csv
 import io
 import math
+import os
 import re
+import warnings
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
+from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD
 from rockarch.core.paths import atomic_write
 from rockarch.motion import intensity
-from rockarch.motion.records import read_record
+from rockarch.motion.records import G_LIKE_PEAK, UnitsWarning, read_record
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.velocity_pulse import baker_pulse, check_method
 
@@ -173,7 +177,15 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
     """
     files: list[Path] = []
     metas: list[Path] = []
-    for src in ([sources] if isinstance(sources, (str, Path)) else list(sources)):
+    if isinstance(sources, (str, os.PathLike)):
+        sources = [sources]
+    elif not isinstance(sources, (list, tuple)):
+        raise TypeError(f"sources must be a path or a list of paths, got "
+                        f"{type(sources).__name__}")
+    for src in sources:
+        if not isinstance(src, (str, os.PathLike)):
+            raise TypeError(f"sources must hold paths (str or Path), got "
+                            f"{type(src).__name__}")
         p = Path(src)
         if p.is_dir():
             found = sorted((q for q in p.iterdir() if q.is_file() and _is_record_file(q)),
@@ -190,8 +202,9 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
             raise ValueError(f"{p}: no such file or folder")
     if not files:
         raise ValueError("give at least one record (file or folder of records)")
-    names = [f.name for f in files]
-    dup = sorted({n for n in names if names.count(n) > 1})
+    limits.check_count("the suite", len(files), "records", "give fewer records")
+    counts = collections.Counter(f.name for f in files)
+    dup = sorted(n for n, c in counts.items() if c > 1)
     if dup:
         same = [f for f in files if f.name == dup[0]]
         if len({f.resolve() for f in same}) == 1:
@@ -377,9 +390,22 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     rows = read_search_results(metas[0]) if metas else []
     if apply_scale and not rows:
         raise ValueError("--apply-scale needs an NGA-West2 _SearchResults.csv (none found)")
-    records, notes = [], []
+    records, notes, g_like = [], [], []
+    total = 0
     for f in files:
-        motion = read_record(f, units=units)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", UnitsWarning)
+            motion = read_record(f, units=units)
+        for w in caught:
+            if issubclass(w.category, UnitsWarning):
+                if motion.pga <= G_LIKE_PEAK:  # an implausible PGA has its own note below
+                    g_like.append(f.name)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        total += motion.t.size
+        if total > limits.max_suite_samples():  # before the next record is read
+            raise limits.too_many(f"the suite (up to {f.name})", total, "suite_samples",
+                                  limits.max_suite_samples(), "give fewer or shorter records")
         fields = _header_fields(motion)
         row, comp = _match(f.name, rows) if rows else (None, None)
         if row is not None:
@@ -405,6 +431,10 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         if not lo <= motion.pga <= hi:
             notes.append(f"{f.name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
                          "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
+    if g_like:
+        notes.append(f"{len(g_like)} two-column record(s) read as m/s² without --units have "
+                     f"peaks of at most {G_LIKE_PEAK:g}, plausible in g too ({g_like[0]}"
+                     f"{', ...' if len(g_like) > 1 else ''}): give --units m/s2 or --units g")
     if not records:
         raise ValueError("every record is a vertical component: give --vertical to use them")
     suite = Suite(tuple(records), csv=str(metas[0]) if metas else None, notes=tuple(notes))

@@ -28,6 +28,7 @@ and site characteristics. EESD 39(10), 1155–1180 (RDK 2010 below).
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from dataclasses import asdict, dataclass
 
@@ -35,9 +36,10 @@ import numba as nb
 import numpy as np
 from scipy import optimize, special, stats
 
+from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD, G
 from rockarch.core.paths import check_output_dir, write_text
-from rockarch.core.validate import in_range, positive
+from rockarch.core.validate import in_range, integer, positive
 from rockarch.motion.intensity import pgv
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.suite import from_motions, write_at2
@@ -454,6 +456,42 @@ def draw_parameters(rng: np.random.Generator, *, f_max: float = math.inf) -> RDK
                      f"(f_max = {f_max:g} Hz)")
 
 
+#: Time steps of a synthetic suite [s]: the filter frequency (up to 12 Hz) stays below a
+#: quarter of the sampling rate, and a record below 2e5 samples.
+DT_RANGE = (1e-4, 0.02)
+#: Largest high-pass corner [Hz]: above it the filter removes the records' own content
+#: (f_mid >= 1 Hz, F_FLOOR).
+F_CORNER_MAX = 1.0
+
+
+def _suite_args(n, seed, dt, f_corner, pulse_fraction) -> tuple:
+    """(n, seed, dt, f_corner, pulse fraction) checked before any record is drawn."""
+    n = integer("n (number of records)", n)
+    if n < 1:
+        raise ValueError(f"need at least one synthetic record, got n = {n}")
+    limits.check_count("the synthetic suite", n, "records", "ask for fewer records (--n)")
+    seed = integer("seed", seed)
+    if seed < 0:
+        raise ValueError(f"seed must be an integer >= 0, got {seed}")
+    dt = in_range("dt (time step) [s]", dt, *DT_RANGE)
+    f_corner = in_range("f_corner (high-pass corner) [Hz]", f_corner, 0.0, F_CORNER_MAX)
+    return n, seed, dt, f_corner, in_range("pulse fraction", pulse_fraction, 0.0, 1.0)
+
+
+def iter_synthetic(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
+                   pulse_fraction: float = 0.0):
+    """The records of :func:`synthetic_motions`, drawn one at a time (a suite written to
+    files holds one record in memory)."""
+    n, seed, dt, f_corner, fraction = _suite_args(n, seed, dt, f_corner, pulse_fraction)
+    for k, child in enumerate(np.random.SeedSequence(seed).spawn(n)):
+        rng = np.random.default_rng(child)
+        params = draw_parameters(rng, f_max=0.25 / dt)  # generate's limit on f_mid
+        m = generate(params, rng, dt=dt, f_corner=f_corner, name=f"rdk-s{seed}-{k:03d}")
+        if rng.uniform() < fraction:
+            m = add_pulse(m, draw_pulse(rng, m, params.t_mid))
+        yield m
+
+
 def synthetic_motions(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
                       pulse_fraction: float = 0.0) -> list[GroundMotion]:
     """``n`` synthetic records named ``rdk-s{seed}-{k:03d}``, parameters drawn by
@@ -461,19 +499,18 @@ def synthetic_motions(n: int, seed: int = 0, *, dt: float = DT, f_corner: float 
     same records, and the first m of a larger n are the records of n = m (at the same dt).
     Each record gets a Mavroeidis–Papageorgiou pulse
     (:data:`PULSE_RANGES`) with probability ``pulse_fraction`` (0: none, 1: every one);
-    the noise part of record k does not depend on ``pulse_fraction``."""
-    n = int(n)
-    if n < 1:
-        raise ValueError(f"need at least one synthetic record, got n = {n}")
-    fraction = in_range("pulse fraction", pulse_fraction, 0.0, 1.0)
-    dt = positive("dt", dt)
-    out = []
-    for k, child in enumerate(np.random.SeedSequence(int(seed)).spawn(n)):
-        rng = np.random.default_rng(child)
-        params = draw_parameters(rng, f_max=0.25 / dt)  # generate's limit on f_mid
-        m = generate(params, rng, dt=dt, f_corner=f_corner, name=f"rdk-s{int(seed)}-{k:03d}")
-        if rng.uniform() < fraction:
-            m = add_pulse(m, draw_pulse(rng, m, params.t_mid))
+    the noise part of record k does not depend on ``pulse_fraction``. At most
+    :func:`rockarch.core.limits.max_records` records, and
+    :func:`rockarch.core.limits.max_suite_samples` samples in all."""
+    out, total = [], 0
+    for m in iter_synthetic(n, seed, dt=dt, f_corner=f_corner,
+                            pulse_fraction=pulse_fraction):
+        total += m.t.size
+        if total > limits.max_suite_samples():
+            raise limits.too_many(f"a synthetic suite of {n} records", total, "suite_samples",
+                                  limits.max_suite_samples(),
+                                  "ask for fewer records (write them with `rockarch records "
+                                  "synth`, which holds one at a time)")
         out.append(m)
     return out
 
@@ -501,14 +538,15 @@ def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
 
     directory = Path(directory)
     check_output_dir(directory)
-    # the motions first: a bad n, dt or pulse fraction leaves no folder behind
-    motions = list(synthetic_motions(n, seed, dt=dt, f_corner=f_corner,
-                                     pulse_fraction=pulse_fraction))
+    # the arguments and the first record first: a bad n, dt or pulse fraction leaves no
+    # folder behind; then one record at a time in memory
+    motions = iter_synthetic(n, seed, dt=dt, f_corner=f_corner, pulse_fraction=pulse_fraction)
+    first = next(motions)
     directory.mkdir(parents=True, exist_ok=True)
     paths, lines = [], []
     keys = list(RDKParameters.__dataclass_fields__)
     pulse_keys = [f"pulse_{k}" for k in MPPulse.__dataclass_fields__]
-    for m in motions:
+    for m in itertools.chain([first], motions):
         path = write_at2(directory / f"{m.name}.AT2", m,
                          event=f"Synthetic RDK08 seed {int(seed)}", station=m.name,
                          component="H")

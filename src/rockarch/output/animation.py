@@ -28,6 +28,7 @@ from PIL import Image
 from tqdm import tqdm
 
 from rockarch.core.paths import atomic_write
+from rockarch.core.validate import in_range, integer
 from rockarch.output.collapse_plots import draw_supports
 from rockarch.output.figures import new_figure
 
@@ -155,15 +156,25 @@ def _title(resp: MDOFResponse, i: int, n_open: int, magnify: float, final: bool,
     return text
 
 
+#: Most frames per second of a GIF (its frame delays are whole hundredths of a second).
+MAX_FPS = 100
+#: Most frames of one GIF (each frame is rendered and held compressed: ~10 kB each).
+MAX_FRAMES = 10_000
+#: Largest magnification of the displacements (beyond it the drawing leaves the figure).
+MAX_MAGNIFY = 1e4
+
+
 def check_options(fps: int, max_frames: int, magnify: float) -> None:
-    """Reject frame rates below 1, fewer than 2 frames, magnifications below 1 or not
-    finite (ValueError naming the ``rockarch animate`` option)."""
-    if fps < 1:
-        raise ValueError(f"--fps must be >= 1, got {fps}")
-    if max_frames < 2:
-        raise ValueError(f"--frames must be >= 2, got {max_frames}")
-    if not (math.isfinite(magnify) and magnify >= 1):
-        raise ValueError(f"--magnify must be a number >= 1, got {magnify}")
+    """Reject frame rates outside [1, :data:`MAX_FPS`], frames outside [2,
+    :data:`MAX_FRAMES`], magnifications outside [1, :data:`MAX_MAGNIFY`] (ValueError naming
+    the ``rockarch animate`` option)."""
+    fps, max_frames = integer("--fps", fps), integer("--frames", max_frames)
+    if not 1 <= fps <= MAX_FPS:
+        raise ValueError(f"--fps must lie in [1, {MAX_FPS}] (a GIF's frame delays are whole "
+                         f"hundredths of a second), got {fps}")
+    if not 2 <= max_frames <= MAX_FRAMES:
+        raise ValueError(f"--frames must lie in [2, {MAX_FRAMES}], got {max_frames}")
+    in_range("--magnify", magnify, 1.0, MAX_MAGNIFY)
 
 
 class _Renderer:

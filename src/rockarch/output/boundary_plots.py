@@ -15,7 +15,7 @@ import numpy as np
 from rockarch.output.figures import save_figure, subplots
 
 #: The y label of every boundary panel.
-BOUNDARY_LABEL = r"lowest overturning $a_p/a_{p,\min}$"
+BOUNDARY_LABEL = r"lowest overturning $a_p/a_{p,\min}$ [-]"
 
 
 @dataclass(frozen=True)
@@ -87,7 +87,7 @@ def plot_regions(maps: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarray, n
         ax.plot(p, boundary, "r-", lw=1.2, label="lowest overturning ratio")
         ax.set_title(title, fontsize=9)
         ax.set_xlabel("p [1/s]")
-        ax.set_ylabel(r"$a_p/a_{p,\min}$")
+        ax.set_ylabel(r"$a_p/a_{p,\min}$ [-]")
         ax.legend(fontsize=8, loc="upper right")
     fig.tight_layout()
     return save_figure(fig, path)

@@ -63,6 +63,8 @@ def collapse_figure(assembly: Assembly, mech: Collapse | None = None):
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
     d = "+x" if mech.direction > 0 else "-x"
     ax.set_title(f"{a.name}\ncollapse at ap,min = {mech.ap_min:.4g} m/s² = "
                  f"{mech.lambda_:.4g} g (ground accelerating {d})", fontsize=9)

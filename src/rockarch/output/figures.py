@@ -80,7 +80,7 @@ def plot_oas(ds: xr.Dataset, ax=None, *, label: str | None = None, color: str = 
     b = ds["boundary"].values
     ax.plot(p, b, "-", color=color, lw=1.6, label=label or "boundary (lowest overturning)")
     ax.set_xlabel("frequency parameter p [1/s]")
-    ax.set_ylabel(r"$a_p / a_{p,\min}$")
+    ax.set_ylabel(r"$a_p / a_{p,\min}$ [-]")
     ax.set_xlim(_edges(p)[0], _edges(p)[-1])
     ax.set_ylim(_edges(ratio)[0], _edges(ratio)[-1])
     handles, _ = ax.get_legend_handles_labels()
@@ -99,17 +99,42 @@ def _history(resp) -> tuple[np.ndarray, np.ndarray, float, str, str]:
     if hasattr(resp, "assembly"):
         a = resp.assembly
         x = np.abs(resp.q[:, :, 2]).max(axis=1) / a.delta_ref
-        return (resp.t, x, a.ap_min, r"$\max_j |\varphi_j| / \delta$",
+        return (resp.t, x, a.ap_min, r"$\max_j |\varphi_j| / \delta$ [-]",
                 f"{a.name}: {a.n_blocks} blocks; {resp.motion_name}")
     if hasattr(resp, "block"):
         blk = resp.block
         title = (f"block p = {blk.p:.3g} 1/s, alpha = {blk.alpha:.4g} rad, r = {blk.r:.4f}; "
                  f"{resp.motion_name}")
-        return resp.t, resp.theta / blk.alpha, blk.ap_min, r"$\theta / \alpha$", title
+        return resp.t, resp.theta / blk.alpha, blk.ap_min, r"$\theta / \alpha$ [-]", title
     mech = resp.mechanism
     level = np.where(resp.u >= 0, mech.plus.delta, mech.minus.delta)
     title = f"{mech.name}, p = {resp.p:.3g} 1/s; {resp.motion_name}"
-    return resp.t, resp.u / level, mech.ap_min, r"$u / \delta$", title
+    return resp.t, resp.u / level, mech.ap_min, r"$u / \delta$ [-]", title
+
+
+#: Points per line of a time-history figure: longer histories are drawn by their minimum
+#: and maximum in as many bins (what a figure a few thousand pixels wide can show).
+DISPLAY_BINS = 5000
+
+
+def for_display(t: np.ndarray, y: np.ndarray, bins: int = DISPLAY_BINS
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """A long line (t, y) reduced to the minimum and maximum of y in each of ``bins`` equal
+    runs of samples, in time order: the drawn envelope is the same, the figure's memory
+    is not that of 5e6 points (docs/limits.md)."""
+    n = t.size
+    if n <= 4 * bins:
+        return t, y
+    edges = np.linspace(0, n, bins + 1).astype(np.int64)
+    i_lo = np.array([s + int(np.argmin(y[s:e])) for s, e in zip(edges[:-1], edges[1:],
+                                                                  strict=True)])
+    i_hi = np.array([s + int(np.argmax(y[s:e])) for s, e in zip(edges[:-1], edges[1:],
+                                                                  strict=True)])
+    first = i_lo <= i_hi
+    idx = np.empty(2 * bins, dtype=np.int64)
+    idx[0::2] = np.where(first, i_lo, i_hi)
+    idx[1::2] = np.where(first, i_hi, i_lo)
+    return t[idx], y[idx]
 
 
 def plot_response(resp, motion=None) -> Figure:
@@ -119,7 +144,7 @@ def plot_response(resp, motion=None) -> Figure:
     t, x, ap_min, ylabel, title = _history(resp)
     fig = new_figure((7.5, 5.2))
     ax1, ax2 = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
-    ax1.plot(t, x, "k-", lw=1.0)
+    ax1.plot(*for_display(t, x), "k-", lw=1.0)
     ax1.axhline(1.0, color="r", ls=":", lw=0.8)
     if x.min() < 0:  # signed rotation (block, SDOF mechanism); the MDOF measure is >= 0
         ax1.axhline(-1.0, color="r", ls=":", lw=0.8)
@@ -137,10 +162,10 @@ def plot_response(resp, motion=None) -> Figure:
     if motion is not None:
         tt = np.concatenate([motion.t, [motion.duration, t_end]])
         aa = np.concatenate([motion.a, [0.0, 0.0]])
-        ax2.plot(tt, aa / ap_min, "b-", lw=0.8)
+        ax2.plot(*for_display(tt, aa / ap_min), "b-", lw=0.8)
     ax2.axhline(1.0, color="0.5", ls=":", lw=0.8)
     ax2.axhline(-1.0, color="0.5", ls=":", lw=0.8)
-    ax2.set_ylabel(r"$a_g / a_{p,\min}$")
+    ax2.set_ylabel(r"$a_g / a_{p,\min}$ [-]")
     ax2.set_xlabel("t [s]")
     ax2.set_xlim(0, t_end)
     fig.tight_layout()
@@ -173,11 +198,15 @@ def plot_site(ds: xr.Dataset) -> Figure:
         else:
             ax.plot(p, ds["boundary"].values[k], lw=0.6, color="0.65",
                     label=f"{n} records" if k == 0 else None)
-    ax.plot(p, ds["envelope"].values, "k-", lw=2, label="envelope")
-    ax.plot(p, ds["characteristic"].values, "k--", lw=1.2,
-            label=f"{ds.attrs['percentile']:g}th percentile")
+    env, char = ds["envelope"].values, ds["characteristic"].values
+    pct = f"{ds.attrs['percentile']:g}th percentile"
+    if np.array_equal(env, char, equal_nan=True):  # e.g. the 50th of two records: one line
+        ax.plot(p, env, "k-", lw=2, label=f"envelope (= the {pct})")
+    else:  # the percentile drawn over the envelope, visible where they coincide
+        ax.plot(p, env, "k-", lw=2, label="envelope")
+        ax.plot(p, char, "--", color="C3", lw=1.4, label=pct, zorder=3)
     ax.set_xlabel("frequency parameter p [1/s]")
-    ax.set_ylabel("lowest overturning ap/ap,min")
+    ax.set_ylabel("lowest overturning ap/ap,min [-]")
     ax.set_title(ds.attrs["title"], fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14),

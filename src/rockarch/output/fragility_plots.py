@@ -10,14 +10,18 @@ from rockarch.output.html import inline_figure, key_value_table
 from rockarch.output.suite_plots import plot_spectra
 from rockarch.risk.fragility import Fragility
 
-#: Plot units of each intensity measure: (label, factor from SI).
+#: Units of each intensity measure in g (the CLI's --im-range), by which it is divided.
 DISPLAY = {"pga": ("PGA [g]", 1.0 / G_STANDARD), "sa": ("Sa(T) [g]", 1.0 / G_STANDARD),
-           "pgv": ("PGV [m/s]", 1.0)}
+           "pgv": ("PGV [m/s]", 1.0), "pga_norm": ("PGA/(g tan α) [-]", 1.0),
+           "pgv_norm": ("PGV·p/(g tan α) [-]", 1.0)}
+#: SI label of each intensity measure: the fragility figure's axis, as --json gives it.
+SI_LABEL = {"pga": "PGA [m/s²]", "sa": "Sa(T) [m/s²]", "pgv": "PGV [m/s]",
+            "pga_norm": "PGA/(g tan α) [-]", "pgv_norm": "PGV·p/(g tan α) [-]"}
 
 
 def display_units(im: str) -> tuple[str, float]:
-    """(axis label, factor SI → displayed units) of an intensity measure (g for
-    accelerations)."""
+    """(label, factor SI → g) of an intensity measure (g for accelerations; the CLI's
+    --im-range is given in them)."""
     return DISPLAY[im]
 
 
@@ -27,7 +31,9 @@ def plot_fragility(frag: Fragility, im_range=None):
     empirical distribution (plotting positions (i − 0.5)/n) and the censored records at
     their scan limit. Returns the figure."""
     r, fit, ci = frag.ida, frag.fit, frag.ci
-    label, f = display_units(r.im)
+    # the x axis in SI units (those of --json: m/s², m/s); accelerations also in g on top
+    label, f = SI_LABEL[r.im], 1.0
+    in_g = r.im in ("pga", "sa")
     x = r.im_collapse
     if im_range is None:
         known = np.concatenate([x[np.isfinite(x)], r.im_limit])
@@ -39,8 +45,9 @@ def plot_fragility(frag: Fragility, im_range=None):
                         ci["probability_hi"], color="#6a9fd4", alpha=0.3, lw=0,
                         label=f"{100 * ci['level']:g} % bootstrap band")
     if fit is not None:
+        unit = label[label.index("[") + 1:-1]
         ax.plot(grid * f, fit.probability(grid), "k-",
-                label=f"lognormal θ = {fit.median * f:.3g}, β = {fit.beta:.2f}")
+                label=f"lognormal θ = {fit.median * f:.3g} {unit}, β = {fit.beta:.2f}")
     n = x.size
     order = np.sort(x[np.isfinite(x)])
     ax.plot(order * f, (np.arange(1, order.size + 1) - 0.5) / n, "o", ms=4, color="C3",
@@ -57,9 +64,18 @@ def plot_fragility(frag: Fragility, im_range=None):
     ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlim(grid[0] * f, grid[-1] * f)
     ax.set_ylim(-0.02, 1.05)
-    ax.set_xlabel(label if r.im != "sa" else f"Sa(T = {r.period:g} s) [g]")
-    ax.set_ylabel("P(collapse | IM)")
-    ax.set_title(f"fragility of {r.system}, p = {r.p:g} 1/s ({n} records)")
+    name = label if r.im != "sa" else f"Sa(T = {r.period:g} s) [m/s²]"
+    ax.set_xlabel(name)
+    ax.set_ylabel("P(collapse | IM) [-]")
+    if in_g:
+        top = ax.secondary_xaxis("top", functions=(lambda v: v / G_STANDARD,
+                                                   lambda v: v * G_STANDARD))
+        top.set_xscale("log")
+        top.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        top.xaxis.set_major_formatter(ScalarFormatter())
+        top.xaxis.set_minor_formatter(NullFormatter())
+        top.set_xlabel(name.replace("[m/s²]", "[g]"), fontsize=9)
+    ax.set_title(f"fragility of {r.system}, p = {r.p:g} 1/s ({n} records)", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
     return fig

@@ -52,7 +52,7 @@ def site_figure(result: DesignResult, site_ds: xr.Dataset):
     ax.plot([c.p], [result.ratio], "o", color="tab:red", ms=8,
             label=f"arch: p = {c.p:.3f} 1/s, ap/ap,min = {result.ratio:.3f}")
     ax.set_xlabel("frequency parameter p [1/s]")
-    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$")
+    ax.set_ylabel(r"lowest overturning $a_p/a_{p,\min}$ [-]")
     ax.set_ylim(1.0, float(site_ds["ratio"].values[-1]))
     ax.legend(fontsize=8)
     ax.set_title(f"site OAS, slender block alpha = {site_ds.attrs.get('alpha', 0):g}",

@@ -6,8 +6,11 @@ Sect. 11.3):
 
 - the scan is the OAS scan of :mod:`rockarch.spectra.oas` on one p: a grid of ratios
   ap/ap,min, then bisection between the last safe grid value below the first collapse and
-  that collapse, with the same code (so the IDA collapse point of a record *is* its OAS
-  boundary at p times ap,min, Eq. (11.30));
+  that collapse, with the same code (so without a search the IDA collapse point of a
+  record *is* its OAS boundary at p times ap,min, Eq. (11.30));
+- below the grid's first collapse, collapse islands narrower than the grid are searched
+  for on a finer step (by default 0.0025 for every system but MDOF assemblies,
+  Eq. (11.30a)): the collapse point is the *first* collapse found;
 - safe grid values above the first collapse ("resurrections", safe islands of the record)
   are counted and reported, never filled in;
 - a record that never collapses up to the scan limit is a right-censored datum;
@@ -30,27 +33,46 @@ from tqdm.auto import tqdm
 
 from rockarch.core import sweep
 from rockarch.core.constants import OAS_TOL, G
+from rockarch.core.validate import in_range, show, tolerance
 from rockarch.motion.intensity import im_value
 from rockarch.motion.signals import GroundMotion
-from rockarch.risk.record_scan import RecordScan, TaskBar, check_island_step
+from rockarch.risk.record_scan import (
+    RecordScan,
+    TaskBar,
+    check_island_step,
+    check_search_step,
+    default_search_step,
+)
 from rockarch.spectra import site
 from rockarch.spectra.oas import _grid
 from rockarch.systems import BlockSystem
 
-#: Intensity measures of the IDA (the x axis of the fragility curve).
-IMS = ("pga", "pgv", "sa")
-#: Units of each intensity measure.
-IM_UNITS = {"pga": "m/s2", "pgv": "m/s", "sa": "m/s2"}
+#: Intensity measures of the IDA (the x axis of the fragility curve): PGA, PGV, Sa(T)
+#: (5 % damping) and the dimensionless rocking IMs PGA/(g tan α) and PGV·p/(g tan α)
+#: (docs/theory.md Eq. (11.30b); g tan α is the block's ap,min, any system's ap,min
+#: takes its place).
+IMS = ("pga", "pgv", "sa", "pga_norm", "pgv_norm")
+#: Units of each intensity measure ("-": dimensionless).
+IM_UNITS = {"pga": "m/s2", "pgv": "m/s", "sa": "m/s2", "pga_norm": "-", "pgv_norm": "-"}
+#: How each intensity measure is written in tables.
+IM_LABELS = {"pga": "PGA", "pgv": "PGV", "sa": "Sa(T)", "pga_norm": "PGA/(g tan a)",
+             "pgv_norm": "PGV*p/(g tan a)"}
 #: Bootstrap resamples of the confidence band unless told otherwise.
 N_BOOTSTRAP = 500
+#: Most bootstrap resamples (each refits the lognormal: ~1 ms).
+MAX_BOOTSTRAP = 10_000
 
 
 # --------------------------------------------------------------------------- the scan
 
 
-def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) -> float:
-    """The record's intensity measure over its PGA (IM scales linearly with the record):
-    1 for ``pga``; PGV/PGA [s] for ``pgv``; Sa(period)/PGA for ``sa`` (5 % damping)."""
+def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None, *,
+                    p: float | None = None, ap_min: float | None = None) -> float:
+    """The record's intensity measure over its PGA (IM scales linearly with the record,
+    docs/theory.md Eq. (11.30b)): 1 for ``pga``; PGV/PGA [s] for ``pgv``; Sa(period)/PGA
+    for ``sa`` (5 % damping); 1/ap_min for ``pga_norm`` and PGV·p/(PGA·ap_min) for
+    ``pgv_norm`` (the structure's ``p`` [1/s] and ``ap_min`` [m/s²] = g tan α for a
+    block)."""
     if im not in IMS:
         raise ValueError(f"unknown intensity measure {im!r}: choose one of {', '.join(IMS)}")
     if im != "sa" and period is not None:
@@ -61,7 +83,14 @@ def im_per_unit_pga(motion: GroundMotion, im: str, period: float | None = None) 
         raise ValueError("--im sa needs --period T (seconds)")
     if im == "sa" and not (math.isfinite(period) and period > 0):
         raise ValueError(f"--period must be a finite number > 0, got {period}")
-    return im_value(motion, im, period=period) / motion.pga
+    if im == "sa":
+        return im_value(motion, im, period=period) / motion.pga
+    if im.endswith("_norm") and (p is None or ap_min is None):
+        raise ValueError(f"the intensity measure {im} needs the structure's p and ap_min")
+    if im == "pga_norm":
+        return 1.0 / ap_min
+    pgv = im_value(motion, "pgv") / motion.pga
+    return pgv if im == "pgv" else pgv * p / ap_min
 
 
 @dataclass(frozen=True)
@@ -77,11 +106,13 @@ class IDAResult:
     overturned : (record, ratio) bool, the scan.
     ratio_collapse : lowest collapse ratio per record (bisected; NaN: censored).
     im_scale : the IM of each record scaled to ratio 1, i.e. to PGA = ap,min (IM units).
-    resurrections : per record, safe islands above its first collapse on the grid.
+    resurrections : per record, collapse → safe transitions on the grid above its first
+        collapse (safe islands; a lower bound of those of a finer scan).
     tol : bisection tolerance (ratio units).
     island_step : 1, every grid value run; s > 1, the adaptive scan of
         :class:`RecordScan` (``overturned`` is True where a value was not run).
     evaluated : (record, ratio) bool, the values run (None: every one).
+    search_step : step of the search below the grid's first collapse (0: none).
     """
 
     system: str
@@ -98,6 +129,7 @@ class IDAResult:
     period: float | None = None
     island_step: int = 1
     evaluated: np.ndarray | None = None
+    search_step: float = 0.0
 
     @property
     def censored(self) -> np.ndarray:
@@ -116,17 +148,27 @@ class IDAResult:
         return self.ratio[-1] * self.ap_min * self.im_scale
 
 
-def count_resurrections(over: np.ndarray) -> np.ndarray:
+def count_resurrections(over: np.ndarray, ratio=None, collapse=None) -> np.ndarray:
     """Safe islands above the first collapse of each row of a (record, ratio) scan: the
-    number of collapse → safe transitions along the ratio axis."""
+    number of collapse → safe transitions along the ratio axis. Given the grid ``ratio``
+    and each record's first collapse ``collapse`` (NaN: none), the transitions of the
+    sequence (collapse, the grid values above it): a safe grid value above a collapse
+    found below the grid's first one counts too."""
     over = np.asarray(over, dtype=bool)
-    return np.count_nonzero(over[:, :-1] & ~over[:, 1:], axis=1)
+    if collapse is None:
+        return np.count_nonzero(over[:, :-1] & ~over[:, 1:], axis=1)
+    out = np.zeros(over.shape[0], dtype=int)
+    for k, c in enumerate(np.asarray(collapse, dtype=float)):
+        if np.isfinite(c):
+            row = np.concatenate([[True], over[k][np.asarray(ratio) > c]])
+            out[k] = np.count_nonzero(row[:-1] & ~row[1:])
+    return out
 
 
 def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         im: str = "pga", period: float | None = None, ratio=None, tol: float = OAS_TOL,
         progress: bool = False, executor=None, store=None,
-        island_step: int = 1) -> IDAResult:
+        island_step: int = 1, search_step: float | None = None) -> IDAResult:
     """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
 
     Parameters
@@ -144,6 +186,9 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     island_step : 1 (default) runs every grid value; s > 1 the adaptive scan of
         :class:`RecordScan`: the same collapse points, safe islands above the first
         collapse found from every s-th grid value, fewer simulations.
+    search_step : step h of the search for collapse islands below the grid's first
+        collapse (Eq. (11.30a), :class:`RecordScan`); None (default): 0.0025 for every
+        system but MDOF assemblies, 0 (the grid alone) for those; 0: no search.
     """
     motions = tuple(motions)
     if not motions:
@@ -155,14 +200,15 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
                   else ratio)
     if ratio[0] < 0:
         raise ValueError("ratio values must be >= 0")
-    tol = float(tol)
-    if not (math.isfinite(tol) and tol >= 0):
-        raise ValueError(f"tol must be a finite number >= 0, got {tol}")
+    tol = tolerance("tol", tol)
     names = tuple(m.name for m in motions) if names is None else tuple(names)
     if len(names) != len(motions):
         raise ValueError("give one name per record")
-    scale = np.array([im_per_unit_pga(m, im, period) for m in motions])
-    scan = RecordScan(system, p, tol, check_island_step(island_step))
+    scale = np.array([im_per_unit_pga(m, im, period, p=p, ap_min=float(system.ap_min))
+                      for m in motions])
+    search_step = (default_search_step(system) if search_step is None
+                   else check_search_step(search_step))
+    scan = RecordScan(system, p, tol, check_island_step(island_step), search_step)
     task_ratio = np.append(ratio, np.nan)
     # one task per record, the longest records first (they finish last otherwise); each
     # record is stored under its own key as it finishes (resumable, and reused by any
@@ -188,8 +234,53 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         over[k], evaluated[k], collapse[k] = o[:-1], ~np.isnan(r[:-1]), r[-1]
     return IDAResult(system=system.name, p=p, ap_min=float(system.ap_min), im=im,
                      records=names, ratio=ratio, overturned=over, ratio_collapse=collapse,
-                     im_scale=scale, resurrections=count_resurrections(over), tol=tol,
-                     period=period, island_step=scan.island_step, evaluated=evaluated)
+                     im_scale=scale, resurrections=count_resurrections(over, ratio, collapse),
+                     tol=tol, period=period, island_step=scan.island_step,
+                     evaluated=evaluated, search_step=search_step)
+
+
+def with_im(result: IDAResult, motions: Sequence[GroundMotion], im: str,
+            period: float | None = None) -> IDAResult:
+    """The same IDA (same collapse ratios, Eq. (11.30)) in another intensity measure:
+    every IM of :data:`IMS` is linear in the record's scale, Eq. (11.30b)."""
+    motions = tuple(motions)
+    if len(motions) != len(result.records):
+        raise ValueError("give the motions of the IDA, one per record")
+    scale = np.array([im_per_unit_pga(m, im, period, p=result.p, ap_min=result.ap_min)
+                      for m in motions])
+    return replace(result, im=im, period=period, im_scale=scale)
+
+
+def ims_of(result: IDAResult, period: float | None = None) -> list[tuple[str, float | None]]:
+    """Every intensity measure that :func:`compare_ims` reports: (im, period) with Sa at
+    ``period`` [s], default T = 2π/p (the structure's p read as a circular frequency)."""
+    t = 2 * math.pi / result.p if period is None else float(period)
+    return [(im, t if im == "sa" else None) for im in IMS]
+
+
+def compare_ims(result: IDAResult, motions: Sequence[GroundMotion], *,
+                period: float | None = None, n_bootstrap: int = N_BOOTSTRAP,
+                level: float = 0.95, seed: int = 0) -> list[dict]:
+    """The lognormal fit (Eq. (11.31)) of one IDA in every intensity measure of
+    :data:`IMS`, to pick the most efficient one (lowest β, Luco & Cornell 2007). On one
+    structure PGA/(g tan α) and PGV·p/(g tan α) are PGA and PGV times constants: the same
+    β (they differ when structures of other sizes or slenderness are pooled).
+
+    Returns one dict per IM: ``im``, ``label``, ``units``, ``period`` (Sa only),
+    ``median``, ``beta`` and ``ci`` (bootstrap intervals of θ and β; empty for
+    ``n_bootstrap`` 0).
+    """
+    out = []
+    for im, t in ims_of(result, period):
+        frag = fit_ida(with_im(result, motions, im, t), n_bootstrap=n_bootstrap,
+                       level=level, seed=seed)
+        row = {"im": im, "label": IM_LABELS[im], "units": IM_UNITS[im],
+               "median": frag.fit.median, "beta": frag.fit.beta,
+               "ci": {k: frag.ci[k] for k in ("level", "median", "beta") if k in frag.ci}}
+        if t is not None:
+            row["period"] = t
+        out.append(row)
+    return out
 
 
 # --------------------------------------------------------------------------- the fit
@@ -304,9 +395,9 @@ def bootstrap(collapse, censored_at=(), *, n: int = N_BOOTSTRAP, level: float = 
     """
     from scipy.stats import norm
 
-    if isinstance(n, bool) or int(n) != n or n < 1:
-        raise ValueError(f"the number of bootstrap resamples must be a positive integer, "
-                         f"got {n!r}")
+    if isinstance(n, bool) or int(n) != n or not 1 <= n <= MAX_BOOTSTRAP:
+        raise ValueError(f"the number of bootstrap resamples must be an integer in [1, "
+                         f"{MAX_BOOTSTRAP}], got {show(n)}")
     if not 0 < level < 1:
         raise ValueError(f"the confidence level must lie in (0, 1), got {level}")
     x = _positive_values("collapse intensities", collapse)
@@ -372,19 +463,23 @@ class Fragility:
             out["period"] = r.period
         if r.island_step > 1:
             out["island_step"] = r.island_step
+        out["search_step"] = r.search_step
         return out
 
 
 def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float = 0.95,
-            im_grid=None, seed: int = 0) -> Fragility:
-    """Lognormal fit (censored records included) and bootstrap band of an IDA."""
+            im_grid=None, seed: int = 0,
+            hint: str = "raise the scan limit, e.g. --ratio-max 10") -> Fragility:
+    """Lognormal fit (censored records included) and bootstrap band of an IDA; ``hint``:
+    what to do when fewer than two records collapse (:class:`TooFewCollapses`)."""
     x = result.im_collapse[~result.censored]
     c = result.im_limit[result.censored]
     if np.unique(x).size < 2:
+        if len(result.records) < 2:
+            hint = "give at least two records"
         raise TooFewCollapses(f"only {x.size} of {len(result.records)} records collapse up to "
-                         f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least two "
-                         "different collapse points (raise the scan limit, e.g. "
-                         "--ratio-max 10)")
+                              f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least "
+                              f"two different collapse points ({hint})")
     fit = fit_lognormal(x, c)
     ci = {} if n_bootstrap == 0 else bootstrap(x, c, n=n_bootstrap, level=level,
                                                im_grid=im_grid, seed=seed)
@@ -415,7 +510,8 @@ def site_fragility(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
               store=store, progress=progress)
     res = replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
                   f"(replacement, ap,min = {ap_min:.4g} m/s2)")
-    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed)
+    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed,
+                   hint="give more records, or records that collapse at different levels")
 
 
 def design_summary(frag: Fragility, *, pga: float | None = None,
@@ -433,6 +529,8 @@ def design_summary(frag: Fragility, *, pga: float | None = None,
             raise ValueError(f"--pga must be a finite number > 0 [m/s²], got {pga}")
         out["probability_at_pga"] = {"pga": pga, "probability": float(fit.probability(pga))}
     if probability is not None:
+        probability = in_range("probability", probability, 0.0, 1.0, lo_open=True,
+                               hi_open=True)
         x = float(fit.intensity(probability))
         out["pga_at_probability"] = {"probability": probability, "pga": x, "pga_g": x / g}
     return out

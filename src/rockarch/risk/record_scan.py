@@ -1,6 +1,7 @@
 """One record's incremental dynamic analysis (IDA) as one sweep task: the scan of
-ap/ap,min on a grid, full or adaptive, then the bisection of the collapse point
-(docs/theory.md Sect. 11.3, Eq. (11.30)).
+ap/ap,min on a grid, full or adaptive, the search for collapse islands below the grid's
+first collapse on a finer step, then the bisection of the collapse point
+(docs/theory.md Sect. 11.3, Eqs. (11.30) and (11.30a)).
 
 :func:`rockarch.risk.fragility.ida` runs one :class:`RecordScan` task per record on the sweep
 executor (:mod:`rockarch.core.sweep`), so records run side by side with no barrier between
@@ -9,19 +10,51 @@ bisection rounds, and each finished record is stored under its own key.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch.core.validate import show
 from rockarch.motion.signals import GroundMotion
 from rockarch.spectra.oas import refine_boundary
+
+#: The search step of ap/ap,min below the grid's first collapse for systems whose
+#: simulation is cheap (every kind but ``mdof``): the step of the fine scan that the
+#: collapse islands of rocking IDA curves need (docs/sites.md, "Collapse islands").
+SEARCH_STEP = 0.0025
+#: Values of the search per ``system.run`` call and numba thread (a call costs about one
+#: block simulation; the values run above the first collapse are the overshoot).
+SEARCH_BATCH = 16
+
+
+def check_search_step(step) -> float:
+    """The search step of :class:`RecordScan` (ratio units): a finite number >= 0 (0: off)."""
+    if isinstance(step, bool):
+        raise ValueError(f"the search step must be a number >= 0, got {step!r}")
+    try:
+        value = float(step)
+    except (TypeError, ValueError):
+        raise ValueError(f"the search step must be a number >= 0, got {step!r}") from None
+    if not (math.isfinite(value) and value >= 0):
+        raise ValueError(f"the search step must be a finite number >= 0, got {step!r}")
+    return value
+
+
+def default_search_step(system) -> float:
+    """:data:`SEARCH_STEP` for systems simulated by an SDOF kernel (block, frame, sdof,
+    fourhinge: ~0.2 ms a simulation), 0 (no search) for MDOF assemblies (~1 s a
+    simulation: a search would cost hundreds per record)."""
+    from rockarch.systems import MDOFSystem
+
+    return 0.0 if isinstance(system, MDOFSystem) else SEARCH_STEP
 
 
 def check_island_step(step) -> int:
     """The adaptive scan's step (:class:`RecordScan`, Eq. (11.30)): an integer >= 1."""
     if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise ValueError(f"the island step must be an integer >= 1, got {step!r}")
+        raise ValueError(f"the island step must be an integer >= 1, got {show(step)}")
     return int(step)
 
 
@@ -64,12 +97,22 @@ class RecordScan:
     (its neighbours run until a collapse). Values not run lie between two collapses at
     most s values apart and are taken as collapse: an island narrower than s grid values
     that falls between them is missed.
+
+    The search (``search_step`` h > 0, Eq. (11.30a)): after the grid's collapse point
+    (the OAS boundary b, bisected), collapse islands narrower than the grid's step are
+    looked for on the values grid[0] + k·h below b (the whole grid if none), from the
+    bottom up, in batches, until one collapses; the collapse point is then bisected
+    between the last safe value of the search and that collapse. So the collapse point is
+    never above b, and equals it when the search finds nothing below. An island narrower
+    than h that falls between two values of the search is missed. h = 0: the grid alone
+    (the collapse point is b, bit for bit).
     """
 
     system: object
     p: float
     tol: float
     island_step: int = 1
+    search_step: float = 0.0
 
     @property
     def name(self) -> str:
@@ -88,9 +131,49 @@ class RecordScan:
             return [self.system.run(motion, np.full(np.size(r), self.p), np.ravel(r))
                     for _, r in tasks]
 
-        collapse = refine_boundary(run, np.array([self.p]), grid, over[None], self.tol,
-                                    TaskBar(), 1)[0]
+        def bisect(ratios, verdicts):
+            return refine_boundary(run, np.array([self.p]), ratios, verdicts[None], self.tol,
+                                   TaskBar(), 1)[0]
+
+        collapse = bisect(grid, over)  # the record's OAS boundary at p
+        bracket = self._search(motion, grid, over, collapse)
+        if bracket is not None:  # a collapse island below it: the first collapse found
+            collapse = bisect(*bracket)
         return np.append(over, bool(np.isfinite(collapse))), np.append(resp, collapse)
+
+    def _search(self, motion: GroundMotion, grid: np.ndarray, over: np.ndarray,
+                boundary: float):
+        """The bracket (ratios, verdicts) of the bisection of a collapse below the grid's
+        ``boundary`` (bisected; NaN: censored): the first collapse among the values
+        grid[0] + k·h below it and the value before it (safe), or None (no search, or no
+        collapse found below the boundary)."""
+        h = float(self.search_step)
+        if h <= 0 or grid.size == 0:
+            return None
+        c = int(over.argmax()) if over.any() else grid.size
+        top = boundary if np.isfinite(boundary) else grid[-1]
+        # the search values below the boundary, not on the grid (those ran); rounded as
+        # the grid of the CLI is, so that 1.7 is 1.7
+        k = np.arange(int(math.floor((top - grid[0]) / h + 1e-9)) + 1)
+        values = np.round(grid[0] + h * k, 12)
+        values = values[(values < top) if np.isfinite(boundary) else (values <= top)]
+        safe = grid[:c]
+        values = np.setdiff1d(values, safe)
+        import numba
+
+        batch = SEARCH_BATCH * max(numba.get_num_threads(), 1)
+        for i in range(0, values.size, batch):
+            chunk = values[i:i + batch]
+            o, _ = self.system.run(motion, np.full(chunk.size, self.p), chunk)
+            o = np.asarray(o, dtype=bool)
+            if o.any():
+                found = float(chunk[int(o.argmax())])
+                ratios = np.union1d(values, safe)  # every value run below it is safe
+                below = ratios[ratios < found]
+                if below.size == 0:
+                    return np.array([found]), np.array([True])
+                return np.array([below[-1], found]), np.array([False, True])
+        return None
 
     def _scan(self, motion: GroundMotion, grid: np.ndarray):
         """(verdicts, responses) on the grid; responses NaN where not run."""
@@ -130,5 +213,8 @@ class RecordScan:
         return over, resp
 
     def attrs(self) -> dict:
-        return {"p": self.p, "tol": self.tol, "island_step": self.island_step,
-                **self.system.attrs()}
+        out = {"p": self.p, "tol": self.tol, "island_step": self.island_step,
+               **self.system.attrs()}
+        if self.search_step > 0:  # keys of stores written without a search stay valid
+            out["search_step"] = self.search_step
+        return out

@@ -18,18 +18,24 @@ from rockarch.core import limits
 from rockarch.core.constants import EPS_REST, T_FREE, G
 from rockarch.core.constants import SDOF_H_FACTOR as H_FACTOR
 from rockarch.core.response import Batch, Response, run_batch
-from rockarch.core.validate import frequency, in_range, positive
+from rockarch.core.validate import frequency, in_range, positive, show
 from rockarch.motion.signals import GroundMotion
 from rockarch.rocking import kernels as _k
 
 _NO_TABLE = np.zeros((2, 3, 2))
 
 
+#: Largest slenderness of Housner's impact law [rad]: 1 − 1.5·sin²(alpha) = 0 at
+#: asin(sqrt(2/3)) ≈ 0.9553 (B/H = sqrt(2)); above it the law gives r < 0.
+HOUSNER_ALPHA_MAX = math.asin(math.sqrt(2.0 / 3.0))
+
+
 def housner_restitution(alpha: float) -> float:
     """Housner's coefficient of restitution r = 1 − 1.5·sin²(alpha) of a rectangular block:
     the ratio of angular velocities after and before impact from the conservation of
     angular momentum about the new pivot (Housner 1963, BSSA 53(2); his energy ratio is its
-    square; docs/theory.md Eq. (1.6))."""
+    square; docs/theory.md Eq. (1.6)); negative above :data:`HOUSNER_ALPHA_MAX`, where
+    callers refuse it."""
     return 1.0 - 1.5 * math.sin(alpha) ** 2
 
 
@@ -62,6 +68,12 @@ class RigidBlock:
         if self.restitution is not None:
             object.__setattr__(self, "restitution",
                                in_range("restitution", self.restitution, 0.0, 1.0))
+        elif self.alpha > HOUSNER_ALPHA_MAX:
+            raise ValueError(
+                f"Housner's restitution 1 - 1.5 sin²(alpha) is negative "
+                f"({housner_restitution(self.alpha):.4g}) for alpha = {self.alpha:g} rad > "
+                f"{HOUSNER_ALPHA_MAX:.4f} rad (B/H > 1.414): give the restitution "
+                "(--restitution R in [0, 1]; 0: the block stops at its first impact)")
 
     @classmethod
     def from_dimensions(cls, width: float, height: float, g: float = G,
@@ -148,7 +160,7 @@ def simulate(block: RigidBlock, motion: GroundMotion | None, *, t_free: float = 
     th0 = in_range("theta0", theta0, -block.alpha, block.alpha, lo_open=True, hi_open=True)
     om0 = float(theta_dot0)
     if not math.isfinite(om0):
-        raise ValueError(f"theta_dot0 must be finite, got {theta_dot0!r}")
+        raise ValueError(f"theta_dot0 must be finite, got {show(theta_dot0)}")
     tk, ak, name, duration = _k.motion_arrays(motion, block.g, "free rocking")
     cap = history_capacity(tk.size, duration + t_free, block.p, h_factor)
     model, prm, tab, amin, level, e = block.kernel_args()
@@ -190,6 +202,8 @@ def simulate_batch(block: RigidBlock, motion: GroundMotion, p, ratio, *,
     model, prm, tab, amin, level, e = block.kernel_args()
 
     def run(ps, rs):
+        if ps.size:  # the work of the longest run, before any (Eq. 8.5)
+            _k.check_steps(tk, t_free, float(np.max(ps)), h_factor)
         return _k.run_batch(tk, ak, rs * tan_a, model, ps * ps, ps, prm, tab, amin, level,
                             e, float(t_free), float(h_factor), float(eps_rest))
 

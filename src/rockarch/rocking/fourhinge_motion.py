@@ -59,7 +59,8 @@ def impact_coefficient(closing: ArchMechanism, opening: ArchMechanism) -> float:
     part), so it may exceed 1 when the new coordinate turns faster for the same motion; the
     kinetic energy ratio (J_newᵀ M J_old)²/(A_old·A_new) never exceeds 1 (Cauchy–Schwarz).
     A negative projection (a squat mechanism whose new side would close at once) stops the
-    motion: e = 0, as Housner's r < 0 would for a very squat block.
+    motion: e = 0 (the closed-form laws of the block, frame and sdof are refused where they
+    turn negative, :class:`rockarch.rocking.mechanism.SDOFMechanism`).
     """
     vs = closing.thrust.voussoirs
     if opening.thrust.voussoirs.n != vs.n:

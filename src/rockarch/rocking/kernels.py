@@ -330,6 +330,19 @@ def run(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor, 
     return 0, rs[0], n_imp, np.nan, max_r, t, rs[1]
 
 
+def check_steps(tk, t_free: float, p: float, h_factor: float) -> float:
+    """RK4 steps one run may take at most (one per knot and per h_factor/p seconds of
+    motion and free motion, docs/theory.md Eq. (8.5)), known before the work; ValueError
+    above :func:`rockarch.core.limits.max_steps` (``p``: the largest of a batch)."""
+    span = float(tk[-1] - tk[0]) + float(t_free)
+    need = tk.shape[0] + span * float(p) / float(h_factor)
+    if not need <= limits.max_steps():
+        raise limits.too_many(f"a simulation of {span:.6g} s at p = {float(p):.4g} 1/s", need,
+                              "steps", limits.max_steps(),
+                              "lower --t-free, --p or the motion's duration")
+    return need
+
+
 def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h_factor,
                  eps_rest, th0, om0, capacity):
     """:func:`run` with the history in buffers of ``capacity`` samples (at most
@@ -339,12 +352,7 @@ def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h
     stride); raises ValueError, before any work, if the run may need more than
     :func:`rockarch.core.limits.max_steps` RK4 steps (docs/theory.md Eq. (8.5))."""
     limit = limits.max_samples()
-    # known before the work: at most one RK4 step per knot and per h_factor/p seconds
-    need = tk.shape[0] + (tk[-1] - tk[0] + t_free) * p / h_factor
-    if not need <= limits.max_steps():
-        raise limits.too_many(f"a simulation of {tk[-1] - tk[0] + t_free:.6g} s at p = "
-                              f"{p:.4g} 1/s", need, "steps", limits.max_steps(),
-                              "lower --t-free or the motion's duration")
+    need = check_steps(tk, t_free, p, h_factor)
     max_steps = 2 * int(need) + 1000  # safety net: events split steps
     cap = max(min(int(capacity), limit), 16)
     while True:

@@ -133,6 +133,14 @@ class SDOFMechanism:
         if self.restitution is not None:
             object.__setattr__(self, "restitution",
                                in_range("restitution", self.restitution, 0.0, 1.0))
+        else:
+            e = min(self.plus.e_close, self.minus.e_close)
+            if e < 0:
+                raise ValueError(
+                    f"{self.name}: its impact law gives a negative coefficient of "
+                    f"restitution ({e:.4g}): the law does not apply to so stocky a mechanism; "
+                    "give the restitution (--restitution R in [0, 1]; 0: it stops at its "
+                    "first impact)")
 
     @property
     def p(self) -> float:
@@ -305,6 +313,8 @@ def simulate_batch(mech: SDOFMechanism, motion: GroundMotion, p, ratio, *,
     model, prm, tab, amin, level, e = mech.kernel_args()
 
     def run(pp, rs):
+        if pp.size:  # the work of the longest run, before any (Eq. 8.5)
+            _k.check_steps(tk, t_free, float(np.max(pp)), h_factor)
         return _k.run_batch(tk, ak, rs * mech.ap_min / mech.g, model,
                             (pp / mech.p) ** 2 * mech.g, pp, prm, tab, amin, level, e,
                             float(t_free), float(h_factor), float(eps_rest))

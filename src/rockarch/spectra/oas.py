@@ -18,8 +18,10 @@ import xarray as xr
 from tqdm.auto import tqdm
 
 from rockarch.core import __version__, sweep
+from rockarch.core.console import on_terminal
 from rockarch.core.constants import OAS_TOL as TOL
 from rockarch.core.paths import atomic_write
+from rockarch.core.validate import tolerance
 from rockarch.motion.signals import GroundMotion
 
 
@@ -48,7 +50,7 @@ def _grid(name: str, values) -> np.ndarray:
 
 
 def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float = TOL,
-                progress: bool = True, chunks: int = 32, executor=None,
+                progress: bool | None = None, chunks: int = 32, executor=None,
                 store=None) -> xr.Dataset:
     """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio`` (Sect. 1).
 
@@ -63,8 +65,9 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     tol : float
         Bisection tolerance of the boundary (ratio units); 0 disables the refinement and
         the boundary is the first overturning grid value.
-    progress : bool
-        Show a progress bar on stderr.
+    progress : bool or None
+        Show a progress bar on stderr (None: only if stderr is a terminal, so that a log
+        file gets no bar).
     chunks : int
         The grid is run in this many chunks of rows (p values); the bisection rounds are
         split the same way.
@@ -88,9 +91,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
         raise ValueError("p values must be > 0")
     if np.any(ratio < 0):
         raise ValueError("ratio values must be >= 0")
-    tol = float(tol)
-    if not (math.isfinite(tol) and tol >= 0):
-        raise ValueError(f"tol must be a finite number >= 0, got {tol}")
+    tol = tolerance("tol", tol)
     n_p, n_r = p.size, ratio.size
     sweep.check_simulations(n_p * n_r, f"{n_p} p × {n_r} ratio values")
     over = np.zeros((n_p, n_r), dtype=bool)
@@ -109,7 +110,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
 
     try:
         with tqdm(total=n_p * n_r + n_bisect * n_p, desc=f"OAS {system.name}", unit="sim",
-                  disable=not progress, leave=False) as bar:
+                  disable=not on_terminal(progress), leave=False) as bar:
             grid = [np.meshgrid(p[idx], ratio, indexing="ij") for idx in rows]
             for idx, (o, m) in zip(rows, run(grid), strict=True):
                 over[idx], resp[idx] = o, m

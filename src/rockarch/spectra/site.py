@@ -18,6 +18,7 @@ import xarray as xr
 
 from rockarch import systems
 from rockarch.core import __version__, sweep
+from rockarch.core.console import on_terminal
 from rockarch.core.constants import G_STANDARD, OAS_TOL
 from rockarch.core.sweep.limits import check_simulations
 from rockarch.motion.signals import GroundMotion
@@ -74,7 +75,7 @@ def curves(boundary, percentile: float) -> tuple[np.ndarray, np.ndarray]:
 
 def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
-             progress: bool = True, executor=None, store=None, system=None,
+             progress: bool | None = None, executor=None, store=None, system=None,
              **system_kw) -> xr.Dataset:
     """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
 
@@ -105,6 +106,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
 
     executor, owned = sweep.as_executor(executor)
     store = sweep.as_store(store)
+    progress = on_terminal(progress)
     maps = []
     try:
         for k, m in enumerate(motions):

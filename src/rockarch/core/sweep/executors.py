@@ -19,9 +19,17 @@ CONNECT_TIMEOUT = 5.0
 _ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9_.\-]+):(\d{1,5})$")
 
 
+#: Most worker processes of one sweep (local or a LocalCluster): each imports numpy, numba
+#: and rockarch (~250 MB), so more than a few per core only swaps.
+MAX_WORKERS = 64
+
+
 def _check_count(name: str, n) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"{name} must be a positive integer, got {n!r}")
+    if n > MAX_WORKERS:
+        raise ValueError(f"{name} must be at most {MAX_WORKERS} (each worker process holds "
+                         f"~250 MB), got {int(n)}")
     return int(n)
 
 

@@ -177,6 +177,9 @@ def as_store(store) -> Store | None:
         return Store()
     if isinstance(store, Store):
         return store
+    if not isinstance(store, (str, os.PathLike)):
+        raise TypeError(f"store must be None, True, a folder path or a Store, got "
+                        f"{type(store).__name__}")
     return Store(store)
 
 

@@ -12,6 +12,8 @@ import time
 
 import numpy as np
 
+from rockarch.core.console import one_line_warnings
+
 
 def run_chunk(system, motion, p, ratio, threads: int | None = None):
     """One chunk: ``system.run(motion, p, ratio)`` as (bool array, float64 array).
@@ -71,6 +73,7 @@ def _worker_init(parent: int) -> None:
     import multiprocessing
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    one_line_warnings()  # the worker's warnings reach the command's stderr as one line
     # a worker starts no processes; with "spawn" as its start method, numba's threading
     # layer takes no multiprocessing lock, whose semaphore would be reported as "leaked"
     # by the resource tracker when a Ctrl-C terminates the worker

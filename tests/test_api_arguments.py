@@ -1,0 +1,145 @@
+"""The Python front door checks its arguments (issue 22): every public function of
+``import rockarch as ra`` raises TypeError (wrong type) or ValueError (wrong value) with a
+message that names the argument, before any work; never an AttributeError or a numpy
+message from deep inside."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+import rockarch as ra
+
+BLK = ra.system("block", alpha=0.1)
+SINE = ra.pulse("sine", period=0.5)
+
+#: (call, exception, words the message must hold: the argument's name first).
+CASES = {
+    "simulate-path-as-motion": (lambda: ra.simulate(BLK, "rec.AT2", ratio=2, p=2), TypeError,
+                                ["motion", "ra.read_record"]),
+    "simulate-swapped": (lambda: ra.simulate(SINE, BLK, ratio=2, p=2), TypeError,
+                         ["sys_", "comes first"]),
+    "simulate-ratio-list": (lambda: ra.simulate(BLK, SINE, ratio=[2, 3], p=2), TypeError,
+                            ["ratio", "one number"]),
+    "simulate-ratio-none": (lambda: ra.simulate(BLK, SINE, ratio=None, p=2), TypeError,
+                            ["ratio", "None"]),
+    "simulate-ratio-text": (lambda: ra.simulate(BLK, SINE, ratio="2", p=2), TypeError,
+                            ["ratio"]),
+    "simulate-ratio-1e300": (lambda: ra.simulate(BLK, SINE, ratio=1e300, p=2), ValueError,
+                             ["ratio"]),
+    "simulate-p-bool": (lambda: ra.simulate(BLK, SINE, ratio=2, p=True), TypeError, ["p"]),
+    "system-blocks-fraction": (lambda: ra.system("mdof", shape="catenary", span=10, rise=3,
+                                                 thickness=0.25, blocks=20.9),
+                               TypeError, ["blocks", "20.9"]),
+    "system-alpha-bool": (lambda: ra.system("block", alpha=True), TypeError, ["alpha"]),
+    "system-alpha-text": (lambda: ra.system("block", alpha="0.1"), TypeError, ["alpha"]),
+    "system-kind-number": (lambda: ra.system(3, alpha=0.1), TypeError, ["kind"]),
+    "system-shape-on-a-block": (lambda: ra.system("block", alpha=0.1, shape="catenary"),
+                                ValueError, ["shape", "does not apply"]),
+    "system-blocks-on-a-block": (lambda: ra.system("block", alpha=0.1, blocks=5), ValueError,
+                                 ["blocks", "does not apply"]),
+    "system-alpha-on-sdof": (lambda: ra.system("sdof", p=2, delta=0.1, ap_min=1, alpha=0.1),
+                             ValueError, ["alpha", "does not apply"]),
+    "system-g-negative": (lambda: ra.system("block", alpha=0.1, g=-9.81), ValueError, ["g"]),
+    "system-g-huge": (lambda: ra.system("block", alpha=0.1, g=1e308), ValueError, ["g"]),
+    "system-restitution-list": (lambda: ra.system("block", alpha=0.1, restitution=[0.5]),
+                                TypeError, ["restitution"]),
+    "system-wall-number": (lambda: ra.system("mdof", wall=5, block=(0.4, 0.2)), TypeError,
+                           ["wall"]),
+    "system-friction-bool": (lambda: ra.system("mdof", column=[(0.4, 1.0)], friction=True),
+                             TypeError, ["friction"]),
+    "system-wall-too-many-blocks": (lambda: ra.system("mdof", wall=(1000, 1000),
+                                                      block=(0.4, 0.2)),
+                                    ValueError, ["ROCKARCH_MAX_BLOCKS"]),
+    "oas-ratio-none": (lambda: ra.oas(BLK, SINE, p=[1, 2], ratio=None), TypeError,
+                       ["ratio"]),
+    "oas-p-text": (lambda: ra.oas(BLK, SINE, p="1,2", ratio=[1, 2]), TypeError, ["p"]),
+    "oas-swapped": (lambda: ra.oas(SINE, BLK, p=[1, 2], ratio=[1, 2]), TypeError, ["sys_"]),
+    "oas-period-1e300": (lambda: ra.oas(BLK, ra.pulse("sine", period=1e300), p=[1, 2],
+                                        ratio=[1, 2]),
+                         ValueError, ["ROCKARCH_MAX_STEPS"]),
+    "batch-p-none": (lambda: ra.batch(BLK, SINE, None, [1, 2]), TypeError, ["p"]),
+    "pulse-cycles-with-sine": (lambda: ra.pulse("sine", period=1, cycles=4), ValueError,
+                               ["cycles", "harmonic"]),
+    "pulse-period-text": (lambda: ra.pulse("sine", period="1"), TypeError, ["period"]),
+    "pulse-signal-number": (lambda: ra.pulse(1, period=1), TypeError, ["signal"]),
+    "pulse-cycles-fraction": (lambda: ra.pulse("harmonic", period=1, cycles=2.5), TypeError,
+                              ["cycles"]),
+    "read_record-number": (lambda: ra.read_record(5), TypeError, ["path"]),
+    "read_record-units-number": (lambda: ra.read_record("x.txt", units=3), TypeError,
+                                 ["units"]),
+    "read_suite-number": (lambda: ra.read_suite(7), TypeError, ["sources"]),
+    "make_arch-shape-none": (lambda: ra.make_arch(None, 10, 3, 0.25), TypeError, ["shape"]),
+    "make_arch-span-text": (lambda: ra.make_arch("catenary", "10", 3, 0.25), TypeError,
+                            ["span"]),
+    "make_arch-thickness-bool": (lambda: ra.make_arch("catenary", 10, 3, True), TypeError,
+                                 ["thickness"]),
+    "make_arch-flat": (lambda: ra.make_arch("catenary", 10, 1e-9, 0.25), ValueError,
+                       ["rise/span"]),
+    "synthetic_suite-n-fraction": (lambda: ra.synthetic_suite(2.5), TypeError, ["n"]),
+    "synthetic_suite-seed-negative": (lambda: ra.synthetic_suite(2, -1), ValueError,
+                                      ["seed"]),
+    "synthetic_suite-n-1e9": (lambda: ra.synthetic_suite(10**9), ValueError,
+                              ["ROCKARCH_MAX_RECORDS"]),
+    "design_system-kind-text": (lambda: ra.design_system("block", records=[SINE]), TypeError,
+                                ["system", "ra.system"]),
+    "design_system-probability": (lambda: ra.design_system(ra.system("block", alpha=0.1, p=2),
+                                                           records=[SINE], probability=2),
+                                  ValueError, ["probability"]),
+    "design_system-pga": (lambda: ra.design_system(ra.system("block", alpha=0.1, p=2),
+                                                   records=[SINE], pga=-3),
+                          ValueError, ["pga"]),
+    "GroundMotion-text": (lambda: ra.GroundMotion("abc", [1, 2]), TypeError, ["time"]),
+    "GroundMotion-none": (lambda: ra.GroundMotion(None, None), TypeError, ["time"]),
+    "GroundMotion.scaled-text": (lambda: SINE.scaled("2"), TypeError, ["factor"]),
+    "block-housner-negative": (lambda: ra.system("block", alpha=1.2, p=2), ValueError,
+                               ["restitution", "0.9553"]),
+    "oas-store-number": (lambda: ra.oas(BLK, SINE, p=[1, 2], ratio=[1, 2], store=5),
+                         TypeError, ["store"]),
+    "oas-tol-1e-300": (lambda: ra.oas(BLK, SINE, p=[1, 2], ratio=[1, 2], tol=1e-300),
+                       ValueError, ["tol"]),
+    "batch-shapes": (lambda: ra.batch(BLK, SINE, [1, 2, 3], [1, 2]), ValueError,
+                     ["p and ratio", "(3,)"]),
+    "system.batch-p-text": (lambda: BLK.batch(SINE, "1", [1]), TypeError, ["p"]),
+    "system.simulate-path": (lambda: BLK.simulate("x.AT2", ratio=2, p=2), TypeError,
+                             ["motion"]),
+    "system-column-text": (lambda: ra.system("mdof", column="0.4,1"), TypeError,
+                           ["column"]),
+    "design_system-records-path": (lambda: ra.design_system(ra.system("block", alpha=0.1,
+                                                                      p=2),
+                                                            records="dir/"),
+                                   TypeError, ["records"]),
+    "design_system-site-path": (lambda: ra.design_system(ra.system("block", alpha=0.1, p=2),
+                                                         site="site.nc"),
+                                TypeError, ["site"]),
+}
+
+
+@pytest.mark.parametrize("case", CASES, ids=list(CASES))
+def test_bad_argument_names_the_parameter(case):
+    call, exc, words = CASES[case]
+    with pytest.raises(exc) as info:
+        call()
+    msg = str(info.value)
+    assert "\n" not in msg and "np.float64" not in msg, msg
+    for word in words:
+        assert word in msg, (word, msg)
+
+
+def test_the_same_calls_with_good_arguments_run():
+    """The good counterparts of the cases above: the checks refuse only what is wrong."""
+    r = ra.simulate(BLK, SINE, ratio=2.0, p=np.float64(2.0))  # numpy scalars are numbers
+    assert r.overturned in (True, False)
+    mdof = ra.system("mdof", shape="catenary", span=10, rise=3, thickness=0.25, blocks=20.0)
+    assert mdof.assembly.n_blocks == 20  # a whole float is a whole number
+    assert ra.system("block", alpha=1.2, p=2, restitution=0.0).block().r == 0.0
+    assert ra.pulse("harmonic", period=1, cycles=np.int64(2)).duration == pytest.approx(2.0)
+
+
+def test_messages_show_plain_numbers():
+    """No ``np.float64(...)`` in a message: values are shown as the user wrote them."""
+    with pytest.raises(ValueError) as info:
+        ra.system("block", alpha=np.float64(-1.0))
+    assert re.search(r"got -1\b", str(info.value)), info.value
