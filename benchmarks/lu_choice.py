@@ -63,49 +63,54 @@ def best(fn, reps: int) -> float:
     return min(out)
 
 
+def one_wall(courses: int, cols: int, rng) -> str:
+    """The table row of one wall's matrix."""
+    from rockarch.mdof.kernel_data import graph_model
+
+    w = bd.wall(courses, cols, 0.4, 0.2, mu=0.6)
+    kd = int(graph_model(w).kbody)
+    n = 3 * w.n_blocks
+    a = banded_matrix(n, kd, rng)
+    x = rng.normal(size=n)
+    band = to_band(a, kd)
+    row = np.zeros(kd + 1)
+
+    def ours():
+        f = band.copy()
+        band_lu(n, f, kd, row)
+        y = x.copy()
+        band_lu_solve(n, f, kd, y)
+        return y
+
+    ab = np.zeros((2 * kd + 1, n))
+    for i in range(n):
+        for j in range(max(0, i - kd), min(n, i + kd + 1)):
+            ab[kd + i - j, j] = a[i, j]
+
+    def lapack():
+        return sla.solve_banded((kd, kd), ab, x, check_finite=False)
+
+    csc = sp.csc_matrix(a)
+
+    def superlu():
+        return spla.splu(csc).solve(x)
+
+    ours()  # compiled
+    y0, y1, y2 = ours(), lapack(), superlu()
+    diff = max(np.abs(y0 - y1).max(), np.abs(y0 - y2).max()) / np.abs(y1).max()
+    reps = 200 if n < 300 else 50
+    t = [1e6 * best(f, reps) for f in (ours, lapack, superlu)]
+    return (f"| wall {courses} x {cols} | {n} | {kd} | {t[0]:.0f} | {t[1]:.0f} | {t[2]:.0f} "
+            f"| {diff:.1e} |")
+
+
 def main() -> None:
     rng = np.random.default_rng(0)
     print("| matrix | unknowns | half-bandwidth | rockarch band LU [µs] | LAPACK gbsv [µs] "
           "| SuperLU [µs] | largest difference of the solutions |")
     print("|---|---|---|---|---|---|---|")
     for courses, cols in ((4, 10), (20, 10)):
-        w = bd.wall(courses, cols, 0.4, 0.2, mu=0.6)
-        from rockarch.mdof.kernel_data import graph_model
-
-        kd = int(graph_model(w).kbody)
-        n = 3 * w.n_blocks
-        a = banded_matrix(n, kd, rng)
-        x = rng.normal(size=n)
-        band = to_band(a, kd)
-        row = np.zeros(kd + 1)
-
-        def ours():
-            f = band.copy()
-            band_lu(n, f, kd, row)
-            y = x.copy()
-            band_lu_solve(n, f, kd, y)
-            return y
-
-        ab = np.zeros((2 * kd + 1, n))
-        for i in range(n):
-            for j in range(max(0, i - kd), min(n, i + kd + 1)):
-                ab[kd + i - j, j] = a[i, j]
-
-        def lapack():
-            return sla.solve_banded((kd, kd), ab, x, check_finite=False)
-
-        csc = sp.csc_matrix(a)
-
-        def superlu():
-            return spla.splu(csc).solve(x)
-
-        ours()  # compiled
-        y0, y1, y2 = ours(), lapack(), superlu()
-        diff = max(np.abs(y0 - y1).max(), np.abs(y0 - y2).max()) / np.abs(y1).max()
-        reps = 200 if n < 300 else 50
-        t = [1e6 * best(f, reps) for f in (ours, lapack, superlu)]
-        print(f"| wall {courses} x {cols} | {n} | {kd} | {t[0]:.0f} | {t[1]:.0f} | {t[2]:.0f} "
-              f"| {diff:.1e} |")
+        print(one_wall(courses, cols, rng), flush=True)
 
 
 if __name__ == "__main__":
