@@ -8,7 +8,8 @@ in CPU seconds in one process; pymunk on the same wall, at its 2e-4 s step, for 
 ``--pymunk-seconds`` of the moving record (its per-step cost times the steps of the whole
 record is the reference: a full pymunk run takes minutes).
 
-    .venv/bin/python benchmarks/walls.py                 # ~4 min
+    .venv/bin/python benchmarks/walls.py --ratios 0.5    # ~1 min: the wall at rest
+    .venv/bin/python benchmarks/walls.py                 # > 45 min: the moving run too
     .venv/bin/python benchmarks/walls.py --ratios 2      # the moving run only
 """
 
