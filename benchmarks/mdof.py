@@ -18,9 +18,8 @@ Run:  .venv/bin/python benchmarks/mdof.py                 (≈ 5–8 min on 2 co
    simulated): a two-span bridge on piers and walls of 14, 42 and 205 blocks over 5 s
    (target for 200 blocks: 5 s in ≤ 2 s); µs per step and per step and block, against
    pymunk (the test oracle's model, tests/validation/pymunk_oracle.py: dt = 2e-4 s,
-   60 iterations) on the same structures over 0.5 s. Wide graphs (half-bandwidth > 32) run
-   on the rest path (docs/theory.md Eq. (9.7)) and Gauss–Seidel where it does not apply;
-   benchmarks/wall_solvers.py counts the steps of each.
+   60 iterations) on the same structures over 0.5 s. Every graph runs on the exact contact
+   solve (docs/theory.md Eqs. (9.7)–(9.9)); "band" is its half-bandwidth in bodies.
 """
 
 from __future__ import annotations
@@ -104,8 +103,8 @@ def graphs(rec) -> None:
              ("wall 4 x 3 (mu = 0.6)", 5.0, bd.wall(4, 3, 0.4, 0.2, mu=0.6)),
              ("wall 4 x 10 (mu = 0.6)", 5.0, bd.wall(4, 10, 0.4, 0.2, mu=0.6)),
              ("wall 10 x 20 (mu = 0.6)", 5.0, bd.wall(10, 20, 0.4, 0.2, mu=0.6))]
-    print("6. general contact graphs, El Centro at 0.5·ap,min (one run each; half-bandwidth "
-          f"> 32: rest path + Gauss–Seidel; load average {os.getloadavg()[0]:.2f}):")
+    print("6. general contact graphs, El Centro at 0.5·ap,min (one run each; load average "
+          f"{os.getloadavg()[0]:.2f}):")
     print("| structure | blocks | joints | solver | seconds of motion | run [s] | steps | "
           "µs per step | "
           "µs per step and block | pymunk µs per step | pymunk µs per step and block | "
@@ -119,7 +118,7 @@ def graphs(rec) -> None:
         wall = time.perf_counter() - t0
         us = 1e6 * wall / r.steps
         pm = pymunk_us_per_step(a)
-        solver = "banded" if graph_model(a).banded else "rest + Gauss–Seidel"
+        solver = f"Newton, band {graph_model(a).kbody}"
         print(f"| {name} | {a.n_blocks} | {a.n_joints} | {solver} | {seconds:g} | {wall:.2f} "
               f"| {r.steps} "
               f"| {us:.0f} | {us / a.n_blocks:.1f} | {pm:.0f} | {pm / a.n_blocks:.1f} | "

@@ -20,12 +20,12 @@ def test_numba_cache_folder_is_named_by_the_source_digest():
 
 
 def test_editing_a_callee_module_changes_the_cache_folder(tmp_path):
-    """numba alone would keep graph_run's compiled code after an edit of graph_solver;
+    """numba alone would keep graph_run's compiled code after an edit of contact_solver;
     the digest of the whole package changes, and with it the folder."""
     pkg = tmp_path / "rockarch"
     shutil.copytree(os.path.dirname(rockarch.__file__), pkg,
                     ignore=shutil.ignore_patterns("__pycache__"))
     before = _jit_cache.source_digest(pkg)
-    solver = pkg / "mdof" / "graph_solver.py"
+    solver = pkg / "mdof" / "contact_solver.py"
     solver.write_text(solver.read_text() + "\n# an edit\n")
     assert _jit_cache.source_digest(pkg) != before

@@ -49,8 +49,8 @@ def cases():
            "1.3 ap,min T=1 s", arch, motion.pulse("sine", period=1.0, ap=1.3 * arch.ap_min),
            MDOF_H_FACTOR)
     # on piers the collapse involves 14 bodies and many impacts: the two schemes meet to
-    # 5 % only at a quarter of the default step (7 % / 11 % at the default step, 2.5 % /
-    # 2.4 % at h/4: docs/validation.md)
+    # 5 % only at a quarter of the default step (7 % / 11 % at the default step, 1.5 % /
+    # 1.9 % at h/4: docs/validation.md)
     for mu in (None, 0.6):
         bridge = bd.bridge(catenary(10.0, 3.0, 0.25), 10, pier_height=3.0, pier_width=1.5,
                            mu=mu)

@@ -41,8 +41,11 @@ def _rounded(poly: np.ndarray, r: float) -> np.ndarray:
     return p - r * (n_in + n) / (1.0 + np.sum(n_in * n, axis=1))[:, None]
 
 
-def build(assembly, *, mu: float | None = None, dt: float = 2e-4, iterations: int = 60):
-    """A pymunk Space holding ``assembly`` (its own friction unless ``mu`` is given)."""
+def build(assembly, *, mu: float | None = None, dt: float = 2e-4, iterations: int = 60,
+          ground: bool = False):
+    """A pymunk Space holding ``assembly`` (its own friction unless ``mu`` is given);
+    ``ground``: the ground plane y = 0 whether or not a block stands on it (a block that
+    falls off a pedestal lands on it)."""
     a = assembly
     size = float(a.size)
     space = pymunk.Space()
@@ -64,8 +67,8 @@ def build(assembly, *, mu: float | None = None, dt: float = 2e-4, iterations: in
         s = pymunk.Poly(bodies[i], [tuple(v) for v in piece], radius=ROUND * size)
         s.friction = fr
         space.add(s)
-    if any(abs(a.corners[k, :, 1]).max() < 1e-9 * size for k in range(a.n_joints)
-           if min(a.body_a[k], a.body_b[k]) < 0):
+    if ground or any(abs(a.corners[k, :, 1]).max() < 1e-9 * size for k in range(a.n_joints)
+                     if min(a.body_a[k], a.body_b[k]) < 0):
         ground = pymunk.Poly(space.static_body, [(-100 * size, -size), (100 * size, -size),
                                                  (100 * size, 0.0), (-100 * size, 0.0)])
         ground.friction = fr
@@ -108,3 +111,14 @@ def run(assembly, accel, t_end: float, *, mu: float | None = None, dt: float = 2
             disp = max(disp, float(np.max(np.hypot(*(x - x0).T))))
             rot = max(rot, max(abs(b.angle) for b in bodies))
     return disp, rot
+
+
+def final_state(assembly, accel, t_end: float, *, dt: float = 2e-4, iterations: int = 60):
+    """Simulate ``accel(t)`` for t_end s on a space with the ground plane; return every
+    block's final centroid and rotation, (nb, 3)."""
+    space, bodies = build(assembly, dt=dt, iterations=iterations, ground=True)
+    g = assembly.g
+    for k in range(int(round(t_end / dt))):
+        space.gravity = (-accel(k * dt), -g)
+        space.step(dt)
+    return np.array([(b.position[0], b.position[1], b.angle) for b in bodies])

@@ -147,42 +147,24 @@ def test_newmark_on_the_general_stepper():
     assert np.allclose(r.q[:, 1, 0] - r.q[:, 0, 0], 2.0, atol=1e-9)
 
 
-def test_gauss_seidel_solver_newmark():
-    # graphs wider than KD_MAX are solved by non-smooth Gauss–Seidel: the same sliding
-    # blocks through that solver (forced) slide as Newmark says, with no failed step
-    from rockarch.mdof import graph_run
-    from rockarch.mdof.kernel_data import graph_model
-
-    m = graph_model(_two_blocks_on_the_ground(0.1))._replace(banded=False)
-    step = motion.step(0.5 * G, 0.2)
-    h = 1e-3  # h·p = 0.003 for these blocks, below the default 0.005
-    out = graph_run.run(m, 1.0, step.t, step.a, 1.0, h, 1.5, step.duration, 1e-4, 0,
-                        np.zeros(0), np.zeros((0, 2, 3)), np.zeros((0, 2), np.int8),
-                        np.zeros(0))
-    status, fails, max_slip, n_slide = out[0], out[7], out[8], out[9]
-    assert status == 0 and fails == 0 and n_slide == 2
-    assert max_slip == pytest.approx(newmark_slip(0.5 * G, 0.1, 0.2), rel=2e-3)
-
-
 @pytest.mark.parametrize("mu", [0.5, math.inf])
-@pytest.mark.parametrize("banded", [True, False])
-def test_fully_open_joint_separates(mu, banded):
+def test_fully_open_joint_separates(mu):
     # a block 1 mm above the ground moving sideways at 1 m/s, one contact solve: the open
     # joint carries no impulse at all, the velocity is untouched; with friction and without
     # (mu = inf is the limit of Coulomb's cone: no shear without compression,
-    # docs/theory.md §9), by the exact banded solve and by Gauss–Seidel
+    # docs/theory.md §9)
     from rockarch.mdof import graph_stepper as gs
     from rockarch.mdof.kernel_data import graph_model
-    from rockarch.mdof.rest_solver import make_rest_work
 
     blk = mdof.single_block(0.5, 1.0)
-    m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))._replace(banded=banded)
-    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    m = graph_model(dataclasses.replace(blk, mu=np.array([mu])))
+    ws = gs.make_work(m, 1.0, m.contact_cap)
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1] + 1e-3, np.zeros(1)
     vx, vy, om = np.array([1.0]), np.zeros(1), np.zeros(1)
     h = 1e-3  # the gap (1 mm) is not closed within the step: no speculative contact
-    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws,
-                    make_rest_work(m, 1.0))
+    its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-12, 1e-9, 1e-12,
+                          1e-4 * 0.5, ws)
+    assert its >= 0
     assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
 
 
@@ -193,54 +175,47 @@ def test_no_sliding_joint_holds_while_compressed():
     # tolerance) and the impulse is compressive
     from rockarch.mdof import graph_stepper as gs
     from rockarch.mdof.kernel_data import graph_model
-    from rockarch.mdof.rest_solver import make_rest_work
 
     blk = mdof.single_block(0.5, 1.0)
     m = graph_model(blk)
-    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    ws = gs.make_work(m, 1.0, m.contact_cap)
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1].copy(), np.zeros(1)
     h = 1e-3
     vx, vy, om = np.array([0.01]), np.array([-G * h]), np.zeros(1)
-    gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-9, 1e-12, ws,
-                    make_rest_work(m, 1.0))
+    its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1e-12, 1e-12, 1e-9, 1e-12,
+                          1e-4 * 0.5, ws)
+    assert its >= 0
     assert ws.lam[0] + ws.lam[1] > 0.0
     assert abs(vx[0] + 0.5 * om[0]) < 1e-6  # the base (r_y = -H/2) does not slide
 
 
-def test_wide_wall_at_rest_on_gauss_seidel():
-    # a 42-block running-bond wall (half-bandwidth 38 > KD_MAX: solved by Gauss–Seidel)
-    # on still ground stays at rest: no failed step, no rotation or slip above round-off
-    # (the sweeps stop at SWEEP_TOL·g·h; 1e-6 is far above the drift that leaves)
-    from rockarch.mdof.kernel_data import graph_model
-
+def test_wide_wall_at_rest():
+    # a 42-block running-bond wall (a hyperstatic graph: 108 joints, 324 rows for 126
+    # velocities) on still ground stays at rest: no failed step, no rotation or slip above
+    # round-off
     a = bd.wall(4, 10, 0.4, 0.2, mu=0.6)
-    assert a.n_blocks == 42 and not graph_model(a).banded
+    assert a.n_blocks == 42
     r = mdof.simulate(a, motion.step(1e-9 * G, 0.2), t_free=1.0)
     assert r.lcp_failures == 0 and not r.overturned
     assert r.max_rotation_ratio < 1e-6 and r.max_slip < 1e-6
     assert np.abs(r.q[-1] - r.q[0]).max() < 1e-6
 
 
-def test_wall_collapses_alike_on_both_solvers():
-    # a slender wall (one block wide, 1.2 m tall, ap,min = g/3) under a 0.9 g step pulse
-    # of 0.3 s collapses, on the exact banded solve and on Gauss–Seidel (forced) alike:
-    # the same collapse time within two steps, no failed Gauss–Seidel step
-    from rockarch.mdof import graph_run
-    from rockarch.mdof.kernel_data import graph_model
+def test_slender_wall_collapses_as_one_block():
+    # a slender wall (one block wide, 1.2 m tall, ap,min = g/3) under a 0.9 g step pulse of
+    # 0.3 s rocks about its base as one body and collapses at the time of the rigid block
+    # of the same outline (Housner's equation, rockarch.rocking: exact); the MDOF engine's
+    # midpoint steps of h·p = 0.005 put it within 1 % (a step is 0.1 % of that time)
+    from rockarch.rocking.block import RigidBlock
+    from rockarch.rocking.block import simulate as housner
 
     a = bd.wall(6, 1, 0.4, 0.2, mu=0.8)
     assert a.ap_min == pytest.approx(G / 3, rel=1e-6)
     step = motion.step(0.9 * G, 0.3)
-    h = 1e-3
-    res = []
-    for banded in (True, False):
-        m = graph_model(a)._replace(banded=banded)
-        res.append(graph_run.run(m, 1.0, step.t, step.a, 1.0, h, 2.0, step.duration, 1e-4, 0,
-                                 np.zeros(0), np.zeros((0, 2, 3)), np.zeros((0, 2), np.int8),
-                                 np.zeros(0)))
-    (s_b, t_b), (s_g, t_g, f_g) = res[0][:2], (res[1][0], res[1][1], res[1][7])
-    assert s_b == 1 and s_g == 1 and f_g == 0
-    assert abs(t_b - t_g) <= 2 * h
+    r = mdof.simulate(a, step, t_free=2.0)
+    ref = housner(RigidBlock.from_dimensions(0.4, 1.2), step)
+    assert r.lcp_failures == 0 and r.overturned and ref.overturned
+    assert r.t_overturn == pytest.approx(ref.t_overturn, rel=1e-2)
 
 
 def _on_pedestal(width: float) -> mdof.Assembly:
@@ -280,7 +255,7 @@ def test_sliding_joint_contact_is_the_overlap_of_the_faces():
     from rockarch.mdof.kernel_data import graph_model
 
     m = graph_model(_on_pedestal(0.4))
-    ws = gs.make_work(m, 1.0, np.zeros(3), np.zeros(1, dtype=np.int64))
+    ws = gs.make_work(m, 1.0, m.contact_cap)
     for shift in (-0.3, -0.5):
         x, y, ph = m.c0[:, 0] + shift, m.c0[:, 1].copy(), np.zeros(1)
         off = gs.geometry(1, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu,

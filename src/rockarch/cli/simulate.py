@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import typer
 
+from rockarch import mdof
 from rockarch.cli._app import app, simulate_app
 from rockarch.cli._common import (
     ARCH_RISE_OPT,
@@ -246,12 +247,16 @@ def animate(
     json_out: bool = JSON_OPT,
     **opts,
 ) -> None:
-    """Animate an MDOF arch or column on a ground motion: blocks, open joints, a_g(t)."""
+    """Animate an MDOF structure on a ground motion: blocks, open joints, a_g(t); after a
+    collapse the blocks are followed as they fall, land and come to rest (new contacts)."""
 
     check_options(fps, frames, magnify)
     check_outputs((out, "--out", "gif"))
     sysobj = _mdof_system(opts, t_free, g)
-    resp = sysobj.simulate(motion_shape(**pick(opts, MOTION)), ratio=opts["ratio"])
+    motion = scale_to_ratio(motion_shape(**pick(opts, MOTION)), opts["ratio"], sysobj.ap_min)
+    resp = mdof.simulate(sysobj.assembly, motion, t_free=sysobj.t_free,
+                         h_factor=sysobj.h_factor, gap_tol=sysobj.gap_tol,
+                         through_collapse=True)
     write_gif(resp, out, fps=fps, max_frames=frames, magnify=magnify, progress=progress)
     if json_out:
         print_json({**resp.to_dict(), "out": str(out)})

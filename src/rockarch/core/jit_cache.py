@@ -2,7 +2,7 @@
 
 numba's own cache (``cache=True``) is invalidated only by the timestamp of the file that
 defines a function, not by the modules whose kernels it calls: after an edit of
-``graph_solver.py``, ``graph_run.run`` would keep running its old compiled code. rockarch
+``contact_solver.py``, ``graph_run.run`` would keep running its old compiled code. rockarch
 therefore keeps its compiled kernels in a folder named by a digest of every ``.py`` file of
 the package (:func:`code_digest`, also part of every sweep-store key): any edit compiles
 afresh, unchanged code reuses what was compiled. ``NUMBA_CACHE_DIR`` set by the user wins.

@@ -2,7 +2,8 @@
 
 One Moreau–Jean step per iteration (the pieces: :mod:`rockarch.mdof.graph_stepper`);
 collapse test, impacts, joint states and records exactly as in
-:mod:`rockarch.mdof.chain_stepper`, plus ``max_slip`` and the most joints sliding at once.
+:mod:`rockarch.mdof.chain_stepper`, plus ``max_slip``, the most joints sliding at once and
+the point contacts of new contacts (:mod:`rockarch.mdof.collision`).
 """
 
 from __future__ import annotations
@@ -15,9 +16,70 @@ import numpy as np
 from rockarch.mdof import kinematics as kin
 from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
-from rockarch.mdof.graph_solver import NSGS_TOL
 from rockarch.mdof.graph_stepper import OFF_GAP, contact_step, make_work, project
-from rockarch.mdof.rest_solver import make_rest_work
+
+#: Regularisation ε_n of the normal rows, relative to the largest inverse mass
+#: (docs/theory.md Eq. (9.4)): a closed corner carrying Λ moves in at ε_nΛ, which the
+#: position projection takes back. It decides how a hyperstatic structure shares its load
+#: between redundant contacts, and with it the conditioning of the step ...
+EPS_N = EPS_REG
+#: ... and ε_t of the tangential rows: a sticking joint creeps at ε_tΛ_t, which nothing
+#: takes back, so it stays that of the chain stepper.
+EPS_T = EPS_REG
+#: Impulse tolerance of the friction fixed point, as a fraction of g·h over the largest
+#: inverse mass (the sign tolerance of the contact law).
+LAM_TOL = 1e-6
+#: New contacts are searched every this many steps (sooner if the blocks speed up), within
+#: the distance two corners can close meanwhile: the contacts found are kept (as speculative
+#: rows, inactive while they do not close) until the next search.
+DETECT_EVERY = 8
+
+
+@nb.njit(cache=True)
+def _vmax(vx, vy, om, rad):
+    """Largest speed of any block point [m/s]."""
+    vmax = 0.0
+    for j in range(vx.shape[0]):
+        vmax = max(vmax, math.sqrt(vx[j] ** 2 + vy[j] ** 2) + abs(om[j]) * rad[j])
+    return vmax
+
+
+@nb.njit(cache=True)
+def _radii(m, scale):
+    """Largest distance of an outline vertex from its body's centroid (scaled)."""
+    rad = np.zeros(m.mass.shape[0])
+    for v in range(m.pv.shape[0]):
+        j = m.pbody[m.vpoly[v]]
+        if j >= 0:
+            rad[j] = max(rad[j], math.hypot(m.pv[v, 0], m.pv[v, 1]) * scale)
+    return rad
+
+
+@nb.njit(cache=True)
+def _point_impacts(m, ws, was_closed):
+    """Point contacts that carry a compressive impulse now and did not the step before
+    (``was_closed`` holds the keys that did; updated)."""
+    nj3 = 3 * m.n0.shape[0]
+    imp = 0
+    n = ws.cnt[0]
+    for i in range(n):
+        if ws.lam[nj3 + 2 * i] > 0.0:
+            key = ws.ckey[i]
+            found = False
+            for q in range(was_closed.shape[0]):
+                if was_closed[q] == key:
+                    found = True
+                    break
+            if not found:
+                imp += 1
+    k = 0
+    for i in range(n):
+        if ws.lam[nj3 + 2 * i] > 0.0 and k < was_closed.shape[0]:
+            was_closed[k] = ws.ckey[i]
+            k += 1
+    for q in range(k, was_closed.shape[0]):
+        was_closed[q] = -1
+    return imp
 
 
 @nb.njit(cache=True)
@@ -60,20 +122,21 @@ def _fallen(m, gap):
 
 @nb.njit(cache=True)
 def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, out_q,
-        out_state, out_e):
+        out_state, out_e, through):
     """Simulate one assembly (``m``: a :class:`rockarch.mdof.kernel_data.GraphModel`) scaled
-    by ``scale`` (lengths) on amp·a(t) [m/s²]. Returns (status, t_collapse,
+    by ``scale`` (lengths) on amp·a(t) [m/s²]; ``through``: go on after a collapse (until
+    rest or t_end) instead of stopping there. Returns (status, t_collapse,
     max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max,
-    rest_steps: the steps solved by the rest path of :mod:`rockarch.mdof.rest_solver`)."""
+    most new contacts carrying an impulse at once)."""
     mass = m.mass
     g = m.g
     nbod = mass.shape[0]
     nj = m.n0.shape[0]
     n = 3 * nj
-    ws = make_work(m, scale, np.zeros(n), np.zeros(nj, dtype=np.int64))
-    tws = make_work(m, scale, np.zeros(n), np.zeros(nj, dtype=np.int64))
-    rw = make_rest_work(m, scale)
-    trw = make_rest_work(m, scale)
+    ws = make_work(m, scale, m.contact_cap)
+    tws = make_work(m, scale, m.contact_cap)
+    rad = _radii(m, scale)
+    was_closed = np.full(m.contact_cap, -1, dtype=np.int64)
     cx0 = m.c0[:, 0] * scale
     cy0 = m.c0[:, 1] * scale
     gtol = gtol_rel * m.thick_min * scale
@@ -90,25 +153,43 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     wmax = 0.0
     for j in range(nbod):
         wmax = max(wmax, ws.im[j], ws.ii[j] * (m.thick_min * scale) ** 2)
-    eps = EPS_REG * wmax
-    tol_u = NSGS_TOL * g * h
-    tol_l = NSGS_TOL * g * h / wmax
+    eps = EPS_T * wmax
+    eps_n = EPS_N * wmax
+    tol_u = LAM_TOL * g * h
+    tol_l = LAM_TOL * g * h / wmax
     e_scale = mass.sum() * g * m.thick_min * scale
     status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
-    slide_max, max_slip, rest = 0, 0.0, 0
+    slide_max, max_slip, points_max = 0, 0.0, 0
     t, step, i_prev = 0.0, 0, 0.0
     n_steps = int(math.ceil(t_end / h))
+    next_search, v_search = 0, 0.0
+    a_max = 0.0
+    for i in range(ak.shape[0]):
+        a_max = max(a_max, abs(amp * ak[i]))
     while step < n_steps:
         i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck,
                                     amp)
         for j in range(nbod):
             vx[j] -= h * agbar
             vy[j] -= h * g
-        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps, tol_u, tol_l, ws, rw)
-        if its < 0:
+        vnow = _vmax(vx, vy, om, rad)
+        margin = -1.0
+        if step >= next_search or vnow > 2.0 * v_search + g * h:
+            # two corners close at most at 2·(vmax + the speed they gain) meanwhile
+            dt = DETECT_EVERY * h
+            margin = gtol + 2.0 * dt * (2.0 * vnow + dt * (g + a_max))
+            next_search = step + DETECT_EVERY
+            v_search = vnow
+        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps_n, eps, tol_u, tol_l,
+                           margin, ws)
+        if its < 0 or ws.cnt[1] > 0:  # not solved, or more new contacts than room
             fails += 1
-        elif its == 0 and not m.banded:
-            rest += 1
+            ws.cnt[1] = 0
+        n_touch = 0
+        for i in range(ws.cnt[0]):
+            if ws.lam[n + 2 * i] > 0.0:
+                n_touch += 1
+        points_max = max(points_max, n_touch)
         n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
         kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
@@ -133,39 +214,42 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             v0 = 0.0
             for j in range(nbod):
                 v0 += mass[j] * y[j]
-            project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws)
+            project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws, ws)
             kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
         t += h
         step += 1
         impacts, open_max, mx, n_open, rho = kin.tally(gmid, gtol, was_open, ws.lam, ph,
                                                    m.delta_ref, impacts, open_max, mx)
+        impacts += _point_impacts(m, ws, was_closed)
         if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
             kin.record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             out_e[n_rec] = kin.energy(mass, ws.ii, vx, vy, om, y, cy0, g)
             n_rec += 1
-        if rho > 0.5 * math.pi or (can_slide and _fallen(m, gmid)):
+        if status == 0 and (rho > 0.5 * math.pi or (can_slide and _fallen(m, gmid))):
             status = 1
             t_col = t
-            break
-        if rho > CHECK_FROM * m.delta_ref and step % CHECK_EVERY == 0:
+            if not through:
+                break
+        if status == 0 and rho > CHECK_FROM * m.delta_ref and step % CHECK_EVERY == 0:
             # frozen-configuration test: from rest at q under gravity alone
             kin.rest_under_gravity(tvx, tvy, tom, h, g)
             for r in range(n):
                 tws.lam[r] = 0.5 * ws.lam[r]
-            for k in range(nj):
-                tws.case[k] = ws.case[k]
-            for r in range(n):
-                tws.st[r] = ws.st[r]
-            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps, tol_u, tol_l, tws,
-                         trw)
+                tws.sw.st[r] = ws.sw.st[r]
+            tws.cnt[0] = 0
+            tws.sw.state[0] = 0
+            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps_n, eps, tol_u, tol_l,
+                         gtol, tws)
             if kin.moves_away(mass, ws.ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t
-                break
+                if not through:
+                    break
         if t >= t_motion and n_open == 0 and n_sl == 0:
             if kin.kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
                 break
-    return status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max, rest
+    return (status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max,
+            points_max)
 
 
 @nb.njit(cache=True, parallel=True)
@@ -178,7 +262,7 @@ def run_batch(m, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
     for i in nb.prange(k):
         dt, dq, ds = kin.no_history()
         res = run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, 0, dt, dq,
-                  ds, dt)
+                  ds, dt, False)
         status[i] = res[0]
         t_col[i] = res[1]
         mx[i] = res[2]

@@ -1,4 +1,4 @@
-"""The general MDOF stepper: any contact graph, Coulomb friction per joint (numba).
+"""The general MDOF stepper: any contact graph, Coulomb friction, new contacts (numba).
 
 The same Moreau–Jean step as :mod:`rockarch.mdof.chain_stepper` (docs/theory.md §6, §9) for
 an assembly whose joint k joins body ``ba[k]`` to body ``bb[k]`` (−1: the ground, or a
@@ -6,11 +6,11 @@ support moving with it). The normal of joint k is attached to body ``ba[k]``; it
 points to body ``bb[k]``: the gap of corner c is the distance of b's corner from a's face
 line, so a joint may slide along a's face. Per joint: two corner rows and one tangential
 row at the corner in contact (the smaller gap), with the joint's Coulomb cone (μ finite) or
-the no-slip constraint (μ = ∞, the chain model). Contact solve: exact, a box-constrained QP
-on the banded W iterated on the friction bounds (:func:`banded_friction`; docs/theory.md
-Eq. (9.4)), or, for very wide graphs, the rest path (:mod:`rockarch.mdof.rest_solver`,
-Eq. (9.7)) and where it does not apply non-smooth Gauss–Seidel
-(:mod:`rockarch.mdof.graph_solver`). Positions stabilised by one Gauss–Seidel sweep per step
+the no-slip constraint (μ = ∞, the chain model). After the joints, the point contacts of
+corners that reached a face they did not touch as built (:mod:`rockarch.mdof.collision`):
+one normal and one tangential row each. Contact solve: exact, the Newton method in the
+bodies' velocities iterated on the friction bounds (:mod:`rockarch.mdof.contact_solver`,
+docs/theory.md Eqs. (9.7)–(9.9)). Positions stabilised by one Gauss–Seidel sweep per step
 of the chain stepper's projection (closed contacts that carried an impulse close, sticking
 joints keep their slip; velocities untouched, never adding energy). Collapse, impacts and
 records in :mod:`rockarch.mdof.graph_run`.
@@ -24,20 +24,13 @@ from typing import NamedTuple
 import numba as nb
 import numpy as np
 
-from rockarch.mdof.chain_solver import box_qp
-from rockarch.mdof.graph_solver import apply_impulse, joint_velocity, nsgs, solve3
+from rockarch.mdof.collision import detect, local_normals, world
+from rockarch.mdof.contact_solver import SolverWork, make_solver_work, solve
 from rockarch.mdof.kernel_data import SLIDE_TOL
-from rockarch.mdof.rest_solver import note_velocity, rest_solve
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
 PROJECT_SWEEPS = 1
-#: Fixed-point iterations on the joints' normal impulses (chains with friction) before a
-#: step counts as a failure.
-MAX_OUTER = 50
-#: Tolerance of that fixed point: the friction bounds in use repeat within FP_TOL of the
-#: largest joint impulse.
-FP_TOL = 1e-4
 
 
 @nb.njit(cache=True)
@@ -179,6 +172,38 @@ def _slid_joints(nj, ba, bb, x, y, cs, sn, ra, rb, fa, fb, ftol, n0, mu, gap, ja
     return n_off
 
 
+#: A joint's corner that projects beyond the other block's face by more than this fraction
+#: of the face is off it (the faces turned apart); generous, as it only has to catch blocks
+#: that tipped over an edge (a sliding joint's corners follow the faces' overlap, §9).
+OFF_FACE = 0.05
+
+
+@nb.njit(cache=True, inline="always")
+def _outside(ex0, ey0, ex1, ey1, px, py):
+    """True if (px, py) projects beyond the segment from (ex1, ey1) to (ex0, ey0) by more
+    than ``OFF_FACE`` of its length."""
+    ux = ex0 - ex1
+    uy = ey0 - ey1
+    ll = ux * ux + uy * uy
+    s = (ux * (px - ex1) + uy * (py - ey1)) / ll
+    return s < -OFF_FACE or s > 1.0 + OFF_FACE
+
+
+@nb.njit(cache=True)
+def _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
+    """True if a corner of joint k (b's point pb, a's point pa) no longer lies over the
+    other block's face: pb beyond the ends of a's face or pa beyond b's (the faces have
+    turned apart: a block tipped over an edge). A sliding joint's corners are the ends of
+    the faces' overlap (:func:`_sliding_joint`), which never are."""
+    a0x, a0y, _, _ = _point(a, x, y, cs, sn, fa[k, 0, 0], fa[k, 0, 1])
+    a1x, a1y, _, _ = _point(a, x, y, cs, sn, fa[k, 1, 0], fa[k, 1, 1])
+    if _outside(a0x, a0y, a1x, a1y, pbx, pby):
+        return True
+    b0x, b0y, _, _ = _point(b, x, y, cs, sn, fb[k, 0, 0], fb[k, 0, 1])
+    b1x, b1y, _, _ = _point(b, x, y, cs, sn, fb[k, 1, 0], fb[k, 1, 1])
+    return _outside(b0x, b0y, b1x, b1y, pax, pay)
+
+
 @nb.njit(cache=True)
 def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
@@ -206,6 +231,8 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
             dx = pbx - pax
             dy = pby - pay
             gap[k, cc] = nx * dx + ny * dy
+            if _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
+                gap[k, cc] = OFF_GAP  # the faces have turned apart here (a block tipped over)
             if cc == 1 and gap[k, 1] < gap[k, 0]:
                 best = 1
             _rows(ja, jb, 3 * k + cc, a, nx, ny, pbx, pby, obx, oby, x, y)
@@ -220,6 +247,58 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
             return _slid_joints(nj, ba, bb, x, y, cs, sn, ra, rb, fa, fb, ftol, n0, mu, gap,
                                 ja, jb)
     return 0
+
+
+@nb.njit(cache=True, inline="always")
+def solve3(a, r, out):
+    """Solve the 3×3 system a·out = r (Gaussian elimination, partial pivoting; a, r are
+    overwritten). Returns False if a is (numerically) singular."""
+    for c in range(3):
+        p = c
+        for i in range(c + 1, 3):
+            if abs(a[i, c]) > abs(a[p, c]):
+                p = i
+        if abs(a[p, c]) < 1e-300:
+            return False
+        if p != c:
+            for j in range(3):
+                tmp = a[c, j]
+                a[c, j] = a[p, j]
+                a[p, j] = tmp
+            tmp = r[c]
+            r[c] = r[p]
+            r[p] = tmp
+        for i in range(c + 1, 3):
+            f = a[i, c] / a[c, c]
+            if f != 0.0:
+                for j in range(c, 3):
+                    a[i, j] -= f * a[c, j]
+                r[i] -= f * r[c]
+    for i in range(2, -1, -1):
+        s = r[i]
+        for j in range(i + 1, 3):
+            s -= a[i, j] * out[j]
+        out[i] = s / a[i, i]
+    return True
+
+
+@nb.njit(cache=True, inline="always")
+def apply_impulse(k, ba, bb, ja, jb, d, im, ii, vx, vy, om):
+    """Velocities += M⁻¹·J_kᵀ·d (d: impulse increments of the 3 rows of joint k)."""
+    a = ba[k]
+    b = bb[k]
+    for i in range(3):
+        if d[i] == 0.0:
+            continue
+        r = 3 * k + i
+        if a >= 0:
+            vx[a] += ja[r, 0] * d[i] * im[a]
+            vy[a] += ja[r, 1] * d[i] * im[a]
+            om[a] += ja[r, 2] * d[i] * ii[a]
+        if b >= 0:
+            vx[b] += jb[r, 0] * d[i] * im[b]
+            vy[b] += jb[r, 1] * d[i] * im[b]
+            om[b] += jb[r, 2] * d[i] * ii[b]
 
 
 @nb.njit(cache=True)
@@ -242,133 +321,190 @@ def joint_blocks(nj, ba, bb, ja, jb, im, ii, eps, wl):
                 wl[k, i, j] = s
 
 
+
 @nb.njit(cache=True)
-def band_w(m, ja, jb, im, ii, wb):
-    """Lower band of W = J·M⁻¹·Jᵀ, wb[i, d] = W[i, i − d] (d ≤ wb.shape[1] − 1, which the
-    joint ordering of :func:`rockarch.mdof.kernel_data.graph_model` guarantees): every body
-    adds the products of the rows of the joints it takes part in."""
-    wb[:] = 0.0
-    for j in range(m.mass.shape[0]):
-        for p in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
-            kp = m.inc_joint[p]
-            jp = ja if m.inc_side[p] == 0 else jb
-            for q in range(m.inc_ptr[j], m.inc_ptr[j + 1]):
-                kq = m.inc_joint[q]
-                if kq > kp:
-                    continue
-                jq = ja if m.inc_side[q] == 0 else jb
-                for a in range(3):
-                    i = 3 * kp + a
-                    for b in range(3):
-                        r = 3 * kq + b
-                        if r <= i:
-                            wb[i, i - r] += (jp[i, 0] * jq[r, 0] + jp[i, 1] * jq[r, 1]) * im[j] \
-                                + jp[i, 2] * jq[r, 2] * ii[j]
+def point_rows(m, ws, x, y, cs, sn, i):
+    """Gap and rows of point contact i (face edge ws.cedge[i], corner ws.cvert[i]) at the
+    configuration (x, y, cs, sn): normal row 3·nj + 2i, tangential row 3·nj + 2i + 1, the
+    face's normal attached to its body a (the ground's: +y), the corner on body b; arms
+    from both centroids to the corner (the exact gradient of the gap, docs/theory.md
+    Eq. (9.10))."""
+    nv = m.pv.shape[0]
+    v = ws.cvert[i]
+    e = ws.cedge[i]
+    b = m.pbody[m.vpoly[v]]
+    pbx, pby = world(b, x, y, cs, sn, ws.pv[v, 0], ws.pv[v, 1])
+    obx, oby = (pbx - x[b], pby - y[b]) if b >= 0 else (0.0, 0.0)
+    if e == nv:
+        a = -1
+        nx, ny = 0.0, 1.0
+        gap = pby - ws.gy[0]
+    else:
+        a = m.pbody[m.vpoly[e]]
+        e1 = e + 1 if e + 1 < m.pptr[m.vpoly[e] + 1] else m.pptr[m.vpoly[e]]
+        p0x, p0y = world(a, x, y, cs, sn, ws.pv[e, 0], ws.pv[e, 1])
+        p1x, p1y = world(a, x, y, cs, sn, ws.pv[e1, 0], ws.pv[e1, 1])
+        ex = p1x - p0x
+        ey = p1y - p0y
+        ln = math.sqrt(ex * ex + ey * ey)
+        nx = ey / ln
+        ny = -ex / ln
+        gap = nx * (pbx - p0x) + ny * (pby - p0y)
+    r = 3 * m.n0.shape[0] + 2 * i
+    ws.rba[r] = a
+    ws.rbb[r] = b
+    ws.rba[r + 1] = a
+    ws.rbb[r + 1] = b
+    for c in range(3):
+        ws.ja[r, c] = 0.0
+        ws.jb[r, c] = 0.0
+        ws.ja[r + 1, c] = 0.0
+        ws.jb[r + 1, c] = 0.0
+    _rows(ws.ja, ws.jb, r, a, nx, ny, pbx, pby, obx, oby, x, y)
+    _rows(ws.ja, ws.jb, r + 1, a, -ny, nx, pbx, pby, obx, oby, x, y)
+    if b < 0:
+        for c in range(3):
+            ws.jb[r, c] = 0.0
+            ws.jb[r + 1, c] = 0.0
+    ws.cgap[i] = gap
+
+
+#: A joint whose two blocks have turned apart by more than this [rad] hands their contact
+#: over to the point contacts: its corner rows assume a face lying on the other block's face
+#: (its normal), which a block that tipped over an edge no longer does.
+TURN_OFF = 0.25 * math.pi
 
 
 @nb.njit(cache=True)
-def banded_friction(m, ws, eps, tol_u, tol_l):
-    """Exact contact solve with friction (docs/theory.md §9): box-constrained QPs
-    (|Λ_t| ≤ μ·s_k, Λ_n ≥ 0) by the banded active-set method, iterated on the joints'
-    normal sums s_k until the bounds in use repeat and every sticking joint lies inside its
-    cone, within ``FP_TOL`` of the largest joint impulse (then Λ solves the Coulomb problem
-    to that tolerance). Returns the number of banded solves (negative: failed)."""
-    nj = m.n0.shape[0]
-    total = 0
-    for _outer in range(MAX_OUTER):
-        for k in range(nj):
-            for c in range(2):
-                ws.lo[3 * k + c] = 0.0
-                ws.hi[3 * k + c] = np.inf
-            if math.isinf(m.mu[k]):
-                # no slip while the joint is compressed, no shear when it is not (μ → ∞);
-                # after three iterations a joint once freed stays free (the set only grows)
-                b = np.inf if ws.lam[3 * k] + ws.lam[3 * k + 1] > 0.0 or (
-                    _outer >= 3 and ws.hi[3 * k + 2] > 0.0) else 0.0
-                ws.lo[3 * k + 2] = -b
-                ws.hi[3 * k + 2] = b
-                if b > 0.0:
-                    ws.st[3 * k + 2] = 0  # an infinite bound is never held
+def hand_over(m, ph, gap, jon):
+    """Joints in use (``jon``): those whose blocks have not turned apart by more than
+    ``TURN_OFF``; the others are open (their corners' gaps ``OFF_GAP``) and their corners
+    and faces become point contacts (:mod:`rockarch.mdof.collision`). Returns whether a
+    joint changed hands this step."""
+    changed = False
+    for k in range(m.n0.shape[0]):
+        a = m.ba[k]
+        b = m.bb[k]
+        rel = (ph[b] if b >= 0 else 0.0) - (ph[a] if a >= 0 else 0.0)
+        on = abs(rel) <= TURN_OFF
+        if on != jon[k]:
+            changed = True
+            jon[k] = on
+        if not on:
+            gap[k, 0] = OFF_GAP
+            gap[k, 1] = OFF_GAP
+    return changed
+
+
+@nb.njit(cache=True)
+def find_contacts(m, ws, x, y, ph, margin):
+    """The point contacts of this configuration (:func:`rockarch.mdof.collision.detect`)
+    with their rows; each keeps its last impulses if it was a contact the step before (the
+    warm start). ``margin`` < 0: the contacts of the last search, at this configuration.
+    Returns the number of new ones (absent the step before)."""
+    nv = m.pv.shape[0]
+    cs = np.cos(ph)
+    sn = np.sin(ph)
+    if margin < 0.0:
+        for i in range(ws.cnt[0]):
+            point_rows(m, ws, x, y, cs, sn, i)
+        return 0
+    n = detect(m.pptr, m.pbody, ws.pv, ws.pn, x, y, cs, sn, m.pkeys, m.pptr_j, m.pjoint,
+               ws.jon, margin, ws.gy[0], ws.wx, ws.wy, ws.wn, ws.box, ws.order, ws.found)
+    if n > ws.found.shape[0]:
+        ws.cnt[1] = n  # more than there is room for: the run widens it
+        n = ws.found.shape[0]
+    old = ws.cnt[0]
+    okey = ws.okey
+    olam = ws.olam
+    nj3 = 3 * m.n0.shape[0]
+    st = ws.sw.st
+    for i in range(old):
+        okey[i] = ws.ckey[i]
+        olam[i, 0] = ws.lam[nj3 + 2 * i]
+        olam[i, 1] = ws.lam[nj3 + 2 * i + 1]
+        ws.ost[i, 0] = st[nj3 + 2 * i]
+        ws.ost[i, 1] = st[nj3 + 2 * i + 1]
+    srt = np.argsort(okey[:old])
+    fresh = 0
+    for i in range(n):
+        e = ws.found[i, 0]
+        v = ws.found[i, 1]
+        key = v * (nv + 1) + e
+        ws.cedge[i] = e
+        ws.cvert[i] = v
+        ws.ckey[i] = key
+        r = nj3 + 2 * i
+        lo = 0
+        hi = old
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if okey[srt[mid]] < key:
+                lo = mid + 1
             else:
-                b = m.mu[k] * max(ws.lam[3 * k] + ws.lam[3 * k + 1], 0.0)
-                if _outer >= 3:  # damped: the plain iteration may oscillate
-                    b = 0.5 * (b + ws.hi[3 * k + 2])
-                ws.lo[3 * k + 2] = -b
-                ws.hi[3 * k + 2] = b
-        its = box_qp(3 * nj, ws.wb, ws.q, ws.lo, ws.hi, ws.st, ws.lam, ws.kb, ws.lb, ws.rhs,
-                     ws.sol, eps, tol_u, tol_l)
-        if its < 0:
-            return -1 - total
-        total += its
-        # converged when no bound in use moved and every sticking joint is inside its cone
-        diff = 0.0
-        smax = 0.0
-        for k in range(nj):
-            smax = max(smax, ws.lam[3 * k] + ws.lam[3 * k + 1])
-        for k in range(nj):
-            if math.isinf(m.mu[k]):
-                loaded = ws.lam[3 * k] + ws.lam[3 * k + 1] > 0.0
-                if (ws.hi[3 * k + 2] > 0.0) != loaded and (loaded or _outer < 3):
-                    diff = np.inf
-            else:
-                b = m.mu[k] * (ws.lam[3 * k] + ws.lam[3 * k + 1])
-                if ws.st[3 * k + 2] != 0:
-                    diff = max(diff, abs(b - ws.hi[3 * k + 2]))
-                else:
-                    diff = max(diff, abs(ws.lam[3 * k + 2]) - b)
-        if diff <= max(tol_l, FP_TOL * smax):
-            return total
-    return -1 - total
+                hi = mid
+        if lo < old and okey[srt[lo]] == key:
+            ws.lam[r] = olam[srt[lo], 0]
+            ws.lam[r + 1] = olam[srt[lo], 1]
+            st[r] = ws.ost[srt[lo], 0]
+            st[r + 1] = ws.ost[srt[lo], 1]
+        else:  # a new contact starts open (its tangential row carries nothing)
+            ws.lam[r] = 0.0
+            ws.lam[r + 1] = 0.0
+            st[r] = -1
+            st[r + 1] = 2 if math.isinf(m.mu_contact) else 1
+            fresh += 1
+        point_rows(m, ws, x, y, cs, sn, i)
+    ws.cnt[0] = n
+    return fresh
 
 
 @nb.njit(cache=True)
-def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps, tol_u, tol_l, ws, rw):
-    """Geometry at (x, y, ph), contact impulses for the free velocities (vx, vy, om), which
-    are turned into v⁺ in place. Warm start: ws.lam, ws.case, ws.st; rw: the rest path's
-    work (:func:`rockarch.mdof.rest_solver.make_rest_work`). Exact banded solve
-    (:func:`banded_friction`), or, if the model says so, the rest path
-    (:func:`rockarch.mdof.rest_solver.rest_solve`: returns 0) and else Gauss–Seidel sweeps.
-    Returns the solver's iteration count (negative: failed)."""
+def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps_n, eps_t, tol_u, tol_l, margin, ws):
+    """Geometry at (x, y, ph) (the joints and the point contacts within ``margin``), then
+    the exact contact solve of the step (:func:`rockarch.mdof.contact_solver.coulomb`) for
+    the free velocities (vx, vy, om), which are turned into v⁺ in place. Warm start: the
+    last impulses in ws.lam. Returns the solver's Newton iterations (negative: failed)."""
     nj = m.n0.shape[0]
+    nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
              ws.ja, ws.jb)
+    handed = hand_over(m, ph, ws.gap, ws.jon)
+    if handed and margin < 0.0:
+        margin = gtol  # a joint just handed its blocks over: search now
+    find_contacts(m, ws, x, y, ph, margin)
+    nrows = 3 * nj + 2 * ws.cnt[0]
     for k in range(nj):
         for c in range(3):
             r = 3 * k + c
             ws.bias[r] = ws.gap[k, c] / hh if c < 2 and ws.gap[k, c] > gtol else 0.0
-    d = np.empty(3)
-    if m.banded:
-        band_w(m, ws.ja, ws.jb, ws.im, ws.ii, ws.wb)
-        for k in range(nj):
-            joint_velocity(k, m.ba, m.bb, ws.ja, ws.jb, ws.bias, vx, vy, om, d)
-            for i in range(3):
-                ws.q[3 * k + i] = d[i]
-        its = banded_friction(m, ws, eps, tol_u, tol_l)
-    else:
-        if rest_solve(m, ws, rw, vx, vy, om, tol_u, tol_l):
-            note_velocity(m, rw, vx, vy, om, m.g * hh)
-            return 0
-        joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
-    for k in range(nj):
-        for i in range(3):
-            d[i] = ws.lam[3 * k + i]
-        apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, vx, vy, om)
-    if m.banded:
-        return its
-    sweeps = nsgs(nj, m.ba, m.bb, ws.ja, ws.jb, ws.wl, ws.bias, m.mu, ws.im, ws.ii, vx, vy, om,
-                  ws.lam, ws.case, tol_u, tol_l)
-    note_velocity(m, rw, vx, vy, om, m.g * hh)
-    return sweeps
+    for i in range(ws.cnt[0]):
+        r = 3 * nj + 2 * i
+        ws.bias[r] = ws.cgap[i] / hh if ws.cgap[i] > gtol else 0.0
+        ws.bias[r + 1] = 0.0
+    sw = ws.sw
+    for j in range(nbod):
+        sw.vf[3 * j] = vx[j]
+        sw.vf[3 * j + 1] = vy[j]
+        sw.vf[3 * j + 2] = om[j]
+    its = solve(nbod, nrows, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0, ws.tn1,
+                ws.tmu, eps_n, eps_t, sw, tol_u, tol_l, ws.lref[0])
+    for j in range(nbod):
+        vx[j] = sw.v[3 * j]
+        vy[j] = sw.v[3 * j + 1]
+        om[j] = sw.v[3 * j + 2]
+    return its
 
 
 @nb.njit(cache=True)
-def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws):
+def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws, cws):
     """Position stabilisation: Gauss–Seidel on W·μ = −gap over the kept rows (closed
-    corners that carried an impulse, and their joint's tangential row), then
-    q += M⁻¹·Jᵀ·μ (velocities untouched). Tangential targets: 0 for μ = ∞ joints while
-    the offset is drift-sized; ``anchor`` (the offset when the joint last slid or was
-    open) for a sticking joint; the current offset for a joint in ``free_t`` (sliding or
-    open), whose anchor it becomes."""
+    corners that carried an impulse, and their joint's tangential row; point contacts that
+    carried one), then q += M⁻¹·Jᵀ·μ (velocities untouched). Tangential targets: 0 for
+    μ = ∞ joints while the offset is drift-sized; ``anchor`` (the offset when the joint
+    last slid or was open) for a sticking joint; the current offset for a joint in
+    ``free_t`` (sliding or open), whose anchor it becomes. ``cws``: the step's workspace,
+    whose point contacts (and their impulses) are projected here at this configuration."""
     nj = m.n0.shape[0]
     nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
@@ -411,6 +547,37 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws):
                 r3[i] = -u[i] if keep[3 * k + i] else 0.0
             if solve3(a3, r3, d):
                 apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, dx, dy, dp)
+    # point contacts that carried an impulse: their normal rows, one by one
+    cs = np.cos(ph)
+    sn = np.sin(ph)
+    for i in range(cws.cnt[0]):
+        r = 3 * nj + 2 * i
+        if cws.lam[r] <= 0.0:
+            continue
+        ws.cvert[i] = cws.cvert[i]
+        ws.cedge[i] = cws.cedge[i]
+        point_rows(m, ws, x, y, cs, sn, i)
+        if ws.cgap[i] > 0.0:
+            continue
+        a = ws.rba[r]
+        b = ws.rbb[r]
+        s = ws.cgap[i]
+        w = eps
+        if a >= 0:
+            s += ws.ja[r, 0] * dx[a] + ws.ja[r, 1] * dy[a] + ws.ja[r, 2] * dp[a]
+            w += (ws.ja[r, 0] ** 2 + ws.ja[r, 1] ** 2) * ws.im[a] + ws.ja[r, 2] ** 2 * ws.ii[a]
+        if b >= 0:
+            s += ws.jb[r, 0] * dx[b] + ws.jb[r, 1] * dy[b] + ws.jb[r, 2] * dp[b]
+            w += (ws.jb[r, 0] ** 2 + ws.jb[r, 1] ** 2) * ws.im[b] + ws.jb[r, 2] ** 2 * ws.ii[b]
+        mu_ = -s / w
+        if a >= 0:
+            dx[a] += ws.ja[r, 0] * mu_ * ws.im[a]
+            dy[a] += ws.ja[r, 1] * mu_ * ws.im[a]
+            dp[a] += ws.ja[r, 2] * mu_ * ws.ii[a]
+        if b >= 0:
+            dx[b] += ws.jb[r, 0] * mu_ * ws.im[b]
+            dy[b] += ws.jb[r, 1] * mu_ * ws.im[b]
+            dp[b] += ws.jb[r, 2] * mu_ * ws.ii[b]
     for j in range(nbod):
         x[j] += dx[j]
         y[j] += dy[j]
@@ -418,7 +585,8 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws):
 
 
 class Work(NamedTuple):
-    """Scaled geometry and work arrays of one run."""
+    """Scaled geometry and work arrays of one run: the joints' rows first (3 per joint:
+    corner 0, corner 1, tangential), then up to ``cap`` point contacts (2 rows each)."""
 
     ra: np.ndarray
     rb: np.ndarray
@@ -427,34 +595,79 @@ class Work(NamedTuple):
     ftol: np.ndarray
     im: np.ndarray
     ii: np.ndarray
-    gap: np.ndarray
-    ja: np.ndarray
+    gap: np.ndarray  # (nj, 3)
+    ja: np.ndarray  # (R, 3)
     jb: np.ndarray
-    wl: np.ndarray
-    bias: np.ndarray
+    wl: np.ndarray  # (nj, 3, 3) the joints' diagonal blocks of W (projection)
+    bias: np.ndarray  # (R,)
     lam: np.ndarray
-    case: np.ndarray
-    wb: np.ndarray  # banded solve of chains: W, its factor, the matrix solved
-    lb: np.ndarray
-    kb: np.ndarray
-    q: np.ndarray
-    lo: np.ndarray
-    hi: np.ndarray
-    rhs: np.ndarray
-    sol: np.ndarray
-    st: np.ndarray
+    rba: np.ndarray  # (R,) bodies of every row
+    rbb: np.ndarray
+    tn0: np.ndarray  # (R,) normal rows that bound a tangential row (-1: a normal row)
+    tn1: np.ndarray
+    tmu: np.ndarray
+    pv: np.ndarray  # (nv, 2) the polygons' vertices, scaled
+    wx: np.ndarray  # (nv,) their world positions
+    wy: np.ndarray
+    pn: np.ndarray  # (nv, 2) outward edge normals in the bodies' frames
+    wn: np.ndarray  # (nv, 2) the same in the world
+    box: np.ndarray  # (npoly, 4)
+    order: np.ndarray  # (npoly,)
+    found: np.ndarray  # (cap, 3)
+    cnt: np.ndarray  # [point contacts in use, contacts found beyond the room (0: none)]
+    jon: np.ndarray  # (nj,) joints in use (:func:`hand_over`)
+    cedge: np.ndarray  # (cap,) face (edge id) and corner (vertex id) of every point contact
+    cvert: np.ndarray
+    ckey: np.ndarray
+    cgap: np.ndarray
+    okey: np.ndarray  # the last step's keys, impulses and states (warm start)
+    olam: np.ndarray
+    ost: np.ndarray
+    lref: np.ndarray  # [thinnest joint, scaled]
+    gy: np.ndarray  # [height of the ground plane, scaled]
+    sw: SolverWork
 
 
 @nb.njit(cache=True)
-def make_work(m, scale, lam, case):
-    """Scaled geometry and zeroed work arrays of one run (lam, case: the warm start)."""
+def make_work(m, scale, cap):
+    """Scaled geometry and zeroed work arrays of one run, room for ``cap`` point contacts."""
     nj = m.n0.shape[0]
-    n = 3 * nj
-    kd = m.kd if m.banded else 0
+    nbod = m.mass.shape[0]
+    n = 3 * nj + 2 * cap
+    rba = np.empty(n, dtype=np.int64)
+    rbb = np.empty(n, dtype=np.int64)
+    tn0 = np.full(n, -1, dtype=np.int64)
+    tn1 = np.full(n, -1, dtype=np.int64)
+    tmu = np.zeros(n)
+    for k in range(nj):
+        for c in range(3):
+            rba[3 * k + c] = m.ba[k]
+            rbb[3 * k + c] = m.bb[k]
+        tn0[3 * k + 2] = 3 * k
+        tn1[3 * k + 2] = 3 * k + 1
+        tmu[3 * k + 2] = m.mu[k]
+    for i in range(cap):
+        r = 3 * nj + 2 * i
+        tn0[r + 1] = r
+        tmu[r + 1] = m.mu_contact
+    inertia = m.inertia * scale * scale
+    npoly = m.pbody.shape[0]
+    nv = m.pv.shape[0]
+    pv = m.pv.copy()
+    for v in range(nv):  # supports' vertices are absolute: scaled too
+        pv[v, 0] *= scale
+        pv[v, 1] *= scale
     return Work(m.ra * scale, m.rb * scale, m.fa * scale, m.fb * scale, m.ftol * scale,
-                1.0 / m.mass,
-                1.0 / (m.inertia * scale * scale),
+                1.0 / m.mass, 1.0 / inertia,
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
-                np.zeros(n), lam, case, np.zeros((n, kd + 1)), np.zeros((n, kd + 1)),
-                np.zeros((n, kd + 1)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-                np.zeros(n), np.zeros(n, dtype=np.int8))
+                np.zeros(n), np.zeros(n), rba, rbb, tn0, tn1,
+                tmu, pv, np.zeros(nv), np.zeros(nv), local_normals(m.pptr, pv),
+                np.zeros((nv, 2)), np.zeros((npoly, 4)),
+                np.arange(npoly), np.zeros((cap, 2), dtype=np.int64),
+                np.zeros(2, dtype=np.int64), np.ones(nj, dtype=np.bool_),
+                np.zeros(cap, dtype=np.int64),
+                np.zeros(cap, dtype=np.int64), np.zeros(cap, dtype=np.int64), np.zeros(cap),
+                np.zeros(cap, dtype=np.int64), np.zeros((cap, 2)),
+                np.zeros((cap, 2), dtype=np.int8), np.array([m.thick_min * scale]),
+                np.array([m.ground_y * scale]),
+                make_solver_work(nbod, n, m.bpos, m.mass, inertia, m.kd_cap))

@@ -12,6 +12,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import reverse_cuthill_mckee
+from scipy.spatial import ConvexHull
 
 from rockarch.mdof.assembly import Assembly
 
@@ -66,54 +67,27 @@ class GraphModel(NamedTuple):
     fa: np.ndarray  # (nj, 2, 2) ends of body a's face on the corner 0 / 1 side (as ra)
     fb: np.ndarray  # (nj, 2, 2) ends of body b's face (as rb)
     ftol: np.ndarray  # (nj,) slip below which a sliding joint keeps its corners as built
-    banded: bool  # exact banded contact solve (else rest path, Gauss–Seidel)
-    kd: int  # half-bandwidth of W in this joint order
     inc_ptr: np.ndarray  # (nb + 1,) body j takes part in joints inc_joint[inc_ptr[j]:inc_ptr[j+1]]
     inc_joint: np.ndarray
     inc_side: np.ndarray  # 0: as body a, 1: as body b
-    order: np.ndarray  # (nj,) model joint i is the assembly's joint order[i]
-    bpos: np.ndarray  # (nb,) place of every body in a narrow-band body order (rest path)
+    bpos: np.ndarray  # (nb,) place of every body in a narrow-band body order (Newton solve)
     kbody: int  # half-bandwidth of JᵀJ in that order (3 rows a body)
+    kd_cap: int  # half-bandwidth the solver's band has room for (new contacts widen it)
+    pv: np.ndarray  # (nv, 2) outline vertices for new contacts, relative to their body's
+    #                 centroid (a support's: absolute), counter-clockwise
+    pptr: np.ndarray  # (npoly + 1,) polygon p has the vertices pptr[p]:pptr[p + 1]
+    pbody: np.ndarray  # (npoly,) body of every polygon (-1: a support)
+    vpoly: np.ndarray  # (nv,) polygon of every vertex
+    pkeys: np.ndarray  # sorted keys of the pairs of ids (a block, nb + a support polygon,
+    #                    nb + npoly the ground) that share joints ...
+    pptr_j: np.ndarray  # ... their joints pjoint[pptr_j[q]:pptr_j[q + 1]]
+    pjoint: np.ndarray
+    ground_y: float  # height of the ground plane of new contacts
+    mu_contact: float  # friction coefficient of new contacts
+    contact_cap: int  # most point contacts at once
     thick_min: float
     delta_ref: float
     g: float
-
-
-#: Largest half-bandwidth of W solved by the banded exact solve (cost n·kd² per
-#: factorisation, one per pivot, and a cold start pivots once per opening row); wider
-#: graphs use the rest path and Gauss–Seidel (rest_solver, graph_solver). At kd = 38–47
-#: (40-block walls) the banded solve is already 5–12× slower than those and fails steps on
-#: its pivot limit; the 14-block wall (kd = 32) and every chain and bridge of the tests stay
-#: banded.
-KD_MAX = 32
-
-
-def _half_band(order: np.ndarray, pairs: np.ndarray) -> int:
-    pos = np.empty(order.size, dtype=np.int64)
-    pos[order] = np.arange(order.size)
-    return int(3 * np.abs(pos[pairs[:, 0]] - pos[pairs[:, 1]]).max() + 2)
-
-
-def joint_order(assembly: Assembly) -> tuple[np.ndarray, int]:
-    """A joint order with a narrow band and the half-bandwidth of W in it (3 rows per
-    joint): chains keep theirs; other graphs take the narrowest of reverse Cuthill–McKee
-    on the joints-sharing-a-body graph and the joints sorted by height or by abscissa."""
-    body_a, body_b = np.asarray(assembly.body_a), np.asarray(assembly.body_b)
-    nj = body_a.size
-    pairs = []
-    for j in range(assembly.n_blocks):
-        ks = np.flatnonzero((body_a == j) | (body_b == j))
-        pairs += [(a, b) for a in ks for b in ks if a != b]
-    if not pairs:
-        return np.arange(nj), 2
-    p = np.array(pairs)
-    if assembly.is_chain:
-        return np.arange(nj), _half_band(np.arange(nj), p)
-    adj = csr_matrix((np.ones(len(p)), (p[:, 0], p[:, 1])), shape=(nj, nj))
-    mid = np.asarray(assembly.corners, dtype=float).mean(axis=1)
-    cands = [np.asarray(reverse_cuthill_mckee(adj, symmetric_mode=True), dtype=np.int64),
-             np.lexsort((mid[:, 0], mid[:, 1])), np.lexsort((mid[:, 1], mid[:, 0]))]
-    return min(((o, _half_band(o, p)) for o in cands), key=lambda c: c[1])
 
 
 def body_order(assembly: Assembly) -> tuple[np.ndarray, int]:
@@ -128,9 +102,12 @@ def body_order(assembly: Assembly) -> tuple[np.ndarray, int]:
         return np.arange(nb_, dtype=np.int64), 2
     adj = csr_matrix((np.ones(len(p)), (p[:, 0], p[:, 1])), shape=(nb_, nb_))
     cen = np.asarray(assembly.centroid, dtype=float)
+    # rounded to a millionth of the size: the blocks of a course sort by abscissa, not by
+    # the round-off of their heights
+    q = np.round(cen / (1e-6 * max(float(np.ptp(cen, axis=0).max()), 1e-300)))
     best = None
     for o in (reverse_cuthill_mckee(adj + adj.T, symmetric_mode=True),
-              np.lexsort((cen[:, 1], cen[:, 0])), np.lexsort((cen[:, 0], cen[:, 1]))):
+              np.lexsort((q[:, 1], q[:, 0])), np.lexsort((q[:, 0], q[:, 1]))):
         pos = np.empty(nb_, dtype=np.int64)
         pos[np.asarray(o)] = np.arange(nb_)
         kb = int(3 * np.abs(pos[p[:, 0]] - pos[p[:, 1]]).max() + 2)
@@ -174,18 +151,91 @@ def face_ends(assembly: Assembly, body: np.ndarray, corners: np.ndarray,
     return ends
 
 
-def graph_model(assembly: Assembly) -> GraphModel:
-    """The general stepper's input: the contact graph (body_a, body_b) and mu per joint."""
-    order, kd = joint_order(assembly)
-    ba = np.ascontiguousarray(np.asarray(assembly.body_a, dtype=np.int64)[order])
-    bb = np.ascontiguousarray(np.asarray(assembly.body_b, dtype=np.int64)[order])
+#: Most vertices of a block's outline for new contacts: a curved voussoir's convex hull is
+#: thinned to its corners and the arc points that matter most (Visvalingam's area rule).
+OUTLINE_VERTICES = 12
+
+
+def collision_outline(points: np.ndarray) -> np.ndarray:
+    """The outline of a block for new contacts (:mod:`rockarch.mdof.collision`): its convex
+    hull, counter-clockwise, thinned to ``OUTLINE_VERTICES`` by repeatedly dropping the
+    vertex whose triangle with its neighbours has the least area (a concave intrados becomes
+    its chord; flat faces and corners stay)."""
+    hull = np.asarray(points, float)[ConvexHull(np.asarray(points, float)).vertices]
+    pts = list(map(tuple, hull))
+    while len(pts) > OUTLINE_VERTICES:
+        a = np.array(pts)
+        prv, nxt = np.roll(a, 1, axis=0), np.roll(a, -1, axis=0)
+        area = np.abs((a[:, 0] - prv[:, 0]) * (nxt[:, 1] - prv[:, 1])
+                      - (nxt[:, 0] - prv[:, 0]) * (a[:, 1] - prv[:, 1]))
+        del pts[int(np.argmin(area))]
+    return np.array(pts)
+
+
+def _outlines(assembly: Assembly):
+    """Collision outlines of the blocks and supports: vertices (relative to the body's
+    centroid; a support's absolute), polygon pointers, polygon bodies, vertex polygons, and
+    the sorted keys of the (corner, face) pairs that touch as built (the joints'; a corner
+    on the ground y = 0 against the ground, face id nv)."""
     cen = np.asarray(assembly.centroid, dtype=float)
-    corners = np.asarray(assembly.corners, dtype=float)[order]
+    polys = [(assembly.body_of_polygon(i), collision_outline(p))
+             for i, p in enumerate(assembly.polygons)]
+    polys += [(-1, collision_outline(p)) for p in assembly.info.get("supports", ())]
+    world = [p for _, p in polys]
+    size = float(np.ptp(np.concatenate(world), axis=0).max())
+    tol = 1e-6 * size
+    ptr = np.cumsum([0] + [len(p) for p in world])
+    allv = np.concatenate(world)
+    vpoly = np.repeat(np.arange(len(world)), [len(p) for p in world])
+    pbody = np.array([b for b, _ in polys], dtype=np.int64)
+    # the joints of every pair of ids (a block's index, nb + p for support polygon p, the
+    # ground plane nb + npoly): two blocks joined by a joint in use touch through it only
+    nb_ = assembly.n_blocks
+    npoly = len(polys)
+    nid = nb_ + npoly + 1
+    corners = np.asarray(assembly.corners, dtype=float)
+    normal = np.asarray(assembly.normal, dtype=float)
+    pairs: dict[int, list[int]] = {}
+    for k, (a, b) in enumerate(zip(assembly.body_a, assembly.body_b, strict=True)):
+        a, b = int(a), int(b)
+        if a >= 0 and b >= 0:
+            ids = (a, b)
+        else:
+            body = b if a < 0 else a
+            c0, c1 = corners[k]
+            if max(abs(c0[1]), abs(c1[1])) <= tol and abs(abs(normal[k, 1]) - 1.0) <= 1e-9:
+                other = nid - 1
+            else:
+                other = next((nb_ + p for p, (bp, pw) in enumerate(polys) if bp < 0 and any(
+                    max(abs((c0 - pw[e]) @ normal[k]), abs((c1 - pw[e]) @ normal[k])) <= tol
+                    for e in range(len(pw)))), -1)
+            if other < 0:
+                continue  # an abutment without an outline: nothing to collide with
+            ids = (body, other)
+        pairs.setdefault(min(ids) * nid + max(ids), []).append(k)
+    keys = np.array(sorted(pairs), dtype=np.int64)
+    pptr_j = np.cumsum([0] + [len(pairs[q]) for q in keys]).astype(np.int64)
+    pjoint = np.array([k for q in keys for k in pairs[q]], dtype=np.int64)
+    rel = allv - np.where(pbody[vpoly][:, None] >= 0, cen[np.maximum(pbody[vpoly], 0)], 0.0)
+    # the ground plane: y = 0, or just below the lowest corner as built if that is lower (an
+    # arch springs from inclined abutments below its springing line: none touches the plane)
+    low = float(allv[pbody[vpoly] >= 0, 1].min())
+    ground_y = 0.0 if low >= -tol else low - 1e-3 * size
+    return (_f(rel), np.asarray(ptr, dtype=np.int64), pbody, np.asarray(vpoly, dtype=np.int64),
+            keys, pptr_j, pjoint, ground_y)
+
+
+def graph_model(assembly: Assembly) -> GraphModel:
+    """The general stepper's input: the contact graph (body_a, body_b), mu per joint and
+    the blocks' outlines for new contacts."""
+    ba = np.ascontiguousarray(np.asarray(assembly.body_a, dtype=np.int64))
+    bb = np.ascontiguousarray(np.asarray(assembly.body_b, dtype=np.int64))
+    cen = np.asarray(assembly.centroid, dtype=float)
+    corners = np.asarray(assembly.corners, dtype=float)
     inc = sorted([(int(b), k, 0) for k, b in enumerate(ba) if b >= 0]
                  + [(int(b), k, 1) for k, b in enumerate(bb) if b >= 0])
     ptr = np.searchsorted([i[0] for i in inc], np.arange(assembly.n_blocks + 1))
-
-    normal = _f(np.asarray(assembly.normal)[order])
+    normal = _f(assembly.normal)
 
     def rel(bodies, pts):
         return np.ascontiguousarray(pts - np.where(bodies[:, None, None] >= 0,
@@ -193,13 +243,17 @@ def graph_model(assembly: Assembly) -> GraphModel:
 
     fa, fb = face_ends(assembly, ba, corners, normal), face_ends(assembly, bb, corners, normal)
     span = np.hypot(*(corners[:, 1] - corners[:, 0]).T)
+    bpos, kbody = body_order(assembly)
+    pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y = _outlines(assembly)
+    mu = np.asarray(assembly.mu, dtype=float)
     return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb,
-                      rel(ba, corners), rel(bb, corners), normal,
-                      _f(np.asarray(assembly.mu)[order]), rel(ba, fa), rel(bb, fb),
-                      _f(SLIDE_TOL * span), kd <= KD_MAX, kd,
+                      rel(ba, corners), rel(bb, corners), normal, _f(mu), rel(ba, fa),
+                      rel(bb, fb), _f(SLIDE_TOL * span),
                       np.ascontiguousarray(ptr, dtype=np.int64),
                       np.array([i[1] for i in inc], dtype=np.int64),
-                      np.array([i[2] for i in inc], dtype=np.int64), order,
-                      *body_order(assembly),
+                      np.array([i[2] for i in inc], dtype=np.int64),
+                      bpos, kbody, min(3 * assembly.n_blocks - 1, max(2 * kbody, kbody + 30)),
+                      pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y,
+                      float(mu.min()), 2 * pv.shape[0] + 16,
                       float(assembly.thickness.min()), float(assembly.delta_ref),
                       float(assembly.g))

@@ -3,8 +3,9 @@
 Two steppers behind one API: a chain without friction (arch, column, block: joint k between
 body k−1 and body k, every μ infinite) runs on :mod:`rockarch.mdof.chain_stepper` (exact
 banded active-set contact solve, O(N)); any other assembly (a general contact graph or any
-finite friction coefficient) on :mod:`rockarch.mdof.graph_run` (exact banded solve with the
-joints' Coulomb cones, docs/theory.md Eq. (9.4); Gauss–Seidel for very wide graphs).
+finite friction coefficient) on :mod:`rockarch.mdof.graph_run` (the exact Newton solve in
+the bodies' velocities with Coulomb's cones, docs/theory.md Eqs. (9.7)–(9.9), and new
+contacts wherever a corner reaches a face, :mod:`rockarch.mdof.collision`).
 """
 
 from __future__ import annotations
@@ -42,7 +43,8 @@ class MDOFResponse(Response):
     potential energy relative to the start (ground frame, per unit depth and density).
     ``max_slip`` is the largest tangential offset of the two sides of any joint in contact
     [m] (0 for the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding
-    at once.
+    at once, ``new_contacts_max`` the most new contacts carrying an impulse at once (corners
+    pressing on a face they did not touch as built, docs/theory.md Eq. (9.10)).
     """
 
     assembly: Assembly
@@ -57,13 +59,15 @@ class MDOFResponse(Response):
     ground: GroundMotion | None = None
     max_slip: float = 0.0
     sliding_contacts_max: int = 0
+    new_contacts_max: int = 0
 
     def to_dict(self) -> dict:
         """The verdict plus ``open_joints_max``, ``max_slip`` (m) and
         ``sliding_contacts_max`` (the CLI's ``--json`` output)."""
         return {**super().to_dict(), "open_joints_max": int(self.open_joints_max),
                 "max_slip": float(self.max_slip),
-                "sliding_contacts_max": int(self.sliding_contacts_max)}
+                "sliding_contacts_max": int(self.sliding_contacts_max),
+                "new_contacts_max": int(self.new_contacts_max)}
 
     def corners_at(self, i: int) -> np.ndarray:
         """Block outlines at record i: list of (K, 2) arrays in the ground frame."""
@@ -110,13 +114,16 @@ def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: in
 
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
              t_free: float = T_FREE, h_factor: float = H_FACTOR, gap_tol: float = GAP_TOL,
-             record_every: int = 1) -> MDOFResponse:
+             record_every: int = 1, through_collapse: bool = False) -> MDOFResponse:
     """Simulate the assembly on the ground motion (used as given, m/s²).
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
     Free motion continues ``t_free`` s after the motion ends, or until rest or collapse.
     ``record_every``: record every k-th step (raised when the history would exceed
-    :data:`rockarch.core.limits.MAX_HISTORY_BYTES`).
+    :data:`rockarch.core.limits.MAX_HISTORY_BYTES`). ``through_collapse``: follow the blocks
+    after a collapse (falling, landing, coming to rest) until rest or the end of the free
+    motion (on the general stepper, whose new contacts let them land); the verdict and
+    ``t_overturn`` are those of the first collapse.
     """
     check_settings(t_free, h_factor, gap_tol)
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
@@ -131,16 +138,15 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     cap = n_steps // rec + 2
     out_t, out_q = np.zeros(cap), np.zeros((cap, nb_, 3))
     out_s, out_e = np.zeros((cap, nj), dtype=np.int8), np.zeros(cap)
-    if uses_chain_stepper(assembly):
+    if uses_chain_stepper(assembly) and not through_collapse:
         model = chain_model(assembly)
         out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e) + (0.0, 0)
+                     out_q, out_s, out_e) + (0.0, 0, 0)
     else:
         model = graph_model(assembly)
         out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e)
-        out_s[:, model.order] = out_s.copy()  # back to the assembly's joint numbers
-    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide = out[:10]
+                     out_q, out_s, out_e, bool(through_collapse))
+    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points = out[:11]
     c0 = model.c0
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
@@ -154,7 +160,7 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
         t_end=float(out_t[n_rec - 1]) if n_rec else 0.0,
         impacts=int(imp), open_joints_max=int(nopen), steps=int(steps), h=h,
         lcp_failures=int(fails), ground=motion, max_slip=float(slip),
-        sliding_contacts_max=int(n_slide))
+        sliding_contacts_max=int(n_slide), new_contacts_max=int(n_points))
 
 
 def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,

@@ -7,8 +7,9 @@ the time marker, the title) on the Agg canvas, then maps the pixels onto one fix
 ``max_frames``, then spread evenly) and each is shown for the time to the next one, so the
 GIF plays in real time.
 The last frame is held and shows what its title says: the configuration at the last
-record (for a collapse: at t_overturn), with the displacements magnified by the stated
-factor when they would otherwise be too small to see.
+record (after a collapse followed to rest, `rockarch animate`: where the blocks fell), with
+the displacements magnified by the stated factor when they would otherwise be too small to
+see.
 """
 
 from __future__ import annotations
@@ -118,12 +119,10 @@ def _config(resp: MDOFResponse, i: int, magnify: float) -> np.ndarray:
 
 def plan_frames(resp: MDOFResponse, fps: int, max_frames: int, magnify: float) -> FramePlan:
     """Frames at ``fps`` per simulated second (at most ``max_frames``), ending at the last
-    record (t_overturn for a collapse); the held last frame's magnification is ``magnify``
-    raised (to 1, 2 or 5 × 10^k) until its largest displacement is visible."""
+    record; the held last frame's magnification is ``magnify`` raised (to 1, 2 or 5 × 10^k)
+    until its largest displacement is visible."""
     t = resp.t
     last = t.size - 1
-    if resp.overturned and resp.t_overturn is not None:
-        last = min(last, int(np.searchsorted(t, resp.t_overturn - 1e-12)))
     t_end = float(t[last])
     n = max(2, min(max_frames, int(math.floor(fps * t_end + 1e-9)) + 1, last + 1))
     idx = np.searchsorted(t[:last + 1], np.linspace(0.0, t_end, n))
@@ -147,8 +146,8 @@ def _title(resp: MDOFResponse, i: int, n_open: int, magnify: float, final: bool,
         text += f", sliding: {n_slide}"
     if final:
         if resp.overturned:
-            text = (f"COLLAPSE at t = {resp.t_overturn:.3f} s (overturning criterion), "
-                    f"open joints: {n_open}")
+            text = (f"COLLAPSE at t = {resp.t_overturn:.3f} s (overturning criterion); "
+                    f"t = {resp.t[i]:.2f} s, open joints: {n_open}")
         else:
             text += " (end, safe)"
     if magnify != 1.0:
