@@ -21,6 +21,11 @@ BASE = ["oas", "--alpha", "0.2", "--record", REC, "--p-min", "1", "--p-max", "4"
         "--p-steps", "8", "--ratio-steps", "9", "--t-free", "3", "--json"]
 
 
+def _default_sigint() -> None:
+    """In the child before exec: SIGINT back to its default disposition."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _run(args, **kw):
     res = runner.invoke(app, args, **kw)
     assert res.exit_code == 0, res.output
@@ -131,7 +136,10 @@ def test_ctrl_c_is_one_line_without_leak_warnings(tmp_path, pool):
     args = [exe, "oas", "--alpha", "0.2", "--record", REC, "--p-min", "1", "--p-max", "4",
             "--p-steps", "96", "--ratio-steps", "41", "--no-progress", "--store", str(store),
             *pool]
-    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # Ctrl-C reaches the command even where pytest itself runs with SIGINT ignored (a
+    # background job of a non-interactive shell): a terminal's child would have it
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=_default_sigint)
     deadline = time.monotonic() + 240
     while not list(store.rglob("*.npz")):  # interrupt once the workers run
         assert proc.poll() is None, proc.stderr.read()

@@ -43,6 +43,11 @@ SCRIPT = textwrap.dedent('''
 ''').replace("executor=sys.argv[2])", "executor=sys.argv[2], store=store)")
 
 
+def _default_sigint() -> None:
+    """In the child before exec: SIGINT back to its default disposition."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _chunks(root):
     return sorted((root / "chunks").rglob("*.npz"))
 
@@ -58,7 +63,10 @@ def test_interrupted_sweep_resumes(tmp_path, sig, mode):
     store = tmp_path / "store"
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     cmd = [sys.executable, str(script), str(store), mode, str(tmp_path / "out.npz")]
-    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    # SIGINT reaches the job even where pytest runs with it ignored (a background job of a
+    # non-interactive shell, whose children inherit the ignore): as under a terminal
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            preexec_fn=_default_sigint)
     deadline = time.monotonic() + 60
     while len(_chunks(store)) < 4 if store.exists() else True:
         assert proc.poll() is None, proc.stderr.read().decode()
