@@ -19,9 +19,10 @@ $(VENV)/.installed: pyproject.toml requirements.lock | $(BIN)/python
 demo: $(VENV)/.installed
 	$(BIN)/python examples/demo.py --out $(OUT)
 
+# The fast suite on every core (at most 4 workers: each holds its own numba kernels).
 test: $(VENV)/.installed
 	$(BIN)/ruff check src tests examples benchmarks validation
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(BIN)/python -m pytest -q -m "not slow" -n auto --maxprocesses 4
 
 test-all: $(VENV)/.installed
 	$(BIN)/python -m pytest -q
@@ -41,7 +42,7 @@ $(VENV)/.installed-docs: requirements-docs.lock | $(VENV)/.installed
 # The fast suite again with every ground motion moved in its last bit (tests/perturb/):
 # results move in their last bits, as on another machine; CI runs it after `make test`.
 test-perturbed: $(VENV)/.installed
-	ROCKARCH_PERTURB=1 $(BIN)/python -m pytest -q -m "not slow"
+	ROCKARCH_PERTURB=1 $(BIN)/python -m pytest -q -m "not slow" -n auto --maxprocesses 4
 
 # The fast suite on the oldest versions pyproject.toml allows (.venv-oldest, made with uv's
 # lowest-direct resolution for this Python).
