@@ -41,6 +41,7 @@ from rockarch.core.validate import (
     show,
 )
 from rockarch.mdof.assembly import Assembly
+from rockarch.mdof.simulate import checks_step_by_default
 from rockarch.motion.signals import GroundMotion
 from rockarch.rocking import mechanism as mc
 from rockarch.rocking.block import RigidBlock
@@ -258,6 +259,18 @@ class MDOFSystem(_Scaled):
         return mdof, self.assembly, {"t_free": self.t_free, "h_factor": self.h_factor,
                                      "gap_tol": self.gap_tol}, \
             {"ap_min": self.ap_min_override, "p_ref": self.p_override}
+
+    def simulate(self, motion: GroundMotion, *, ratio: float, p: float | None = None,
+                 check_step: bool | None = None) -> Response:
+        """One time history (:func:`rockarch.mdof.simulate`); ``check_step``: rerun it at
+        h/2 and say whether it is sensitive to the step (``h_half``, ``step_sensitive``);
+        None (default): on the chain stepper and up to
+        :data:`rockarch.mdof.simulate.STEP_CHECK_MAX_BLOCKS` blocks."""
+        if check_step is None:
+            check_step = checks_step_by_default(self.assembly)
+        return mdof.simulate(self.assembly, scale_to_ratio(motion, ratio, self.ap_min), p=p,
+                             t_free=self.t_free, h_factor=self.h_factor,
+                             gap_tol=self.gap_tol, check_step=check_step)
 
     def attrs(self) -> dict:
         a = self.assembly
@@ -536,13 +549,23 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
     return a if mu is None else builders.with_friction(a, mu)
 
 
-def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None
-             ) -> Response:
+def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None,
+             check_step: bool | None = None) -> Response:
     """One time history: ``sys_`` at frequency parameter p (None: its own size) on the
-    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 2.1)."""
+    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 2.1).
+
+    ``check_step`` (MDOF systems only): rerun the history at h/2 and report whether it is
+    sensitive to the time step (:meth:`MDOFSystem.simulate`; None: its default).
+    """
     check_system(sys_)
     check_motion(motion)
-    return sys_.simulate(motion, ratio=ratio, p=None if p is None else number("p", p))
+    kw = {}
+    if isinstance(sys_, MDOFSystem):
+        kw["check_step"] = check_step
+    elif check_step:
+        raise ValueError(f"check_step applies to mdof systems (their time-stepping engine), "
+                         f"not to {sys_.name}")
+    return sys_.simulate(motion, ratio=ratio, p=None if p is None else number("p", p), **kw)
 
 
 def batch(sys_, motion: GroundMotion, p, ratio) -> Batch:

@@ -28,6 +28,7 @@ from rockarch.cli._common import (
 )
 from rockarch.cli._groups import MDOF, MDOF_STEP, MOTION, RATIO, RUN, SDOF, options, pick
 from rockarch.core.validate import positive
+from rockarch.mdof.simulate import STEP_CHECK_MAX_BLOCKS
 from rockarch.output import check_outputs
 from rockarch.output.animation import animate as write_gif
 from rockarch.output.animation import check_options
@@ -58,12 +59,12 @@ def _frame_header(sysobj) -> str:
             f"e={mech.plus.e_close:.4f}")
 
 
-def _run(sysobj, header: str, opts: dict, extra: dict | None = None) -> None:
+def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -> None:
     """Scale the motion to a peak of ratio·ap,min, run, then print JSON or a summary."""
     shape = motion_shape(**pick(opts, MOTION))
     ratio, plot, json_out = opts["ratio"], opts["plot"], opts["json_out"]
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
-    resp = sysobj.simulate(shape, ratio=ratio)
+    resp = sysobj.simulate(shape, ratio=ratio, **sim_kw)
     if plot is not None:
         save_figure(plot_response(resp, mot), plot)
     s = {**resp.to_dict(), **(extra or {})}
@@ -77,11 +78,22 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None) -> None:
     else:
         typer.echo(f"safe: max rotation / its overturning value = "
                    f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts")
+    if s.get("step_sensitive"):
+        typer.echo(_step_note(s["h_half"]))
     stride = getattr(resp, "stride", 1)
     if stride > 1:  # docs/theory.md Eq. (8.6): the verdict above is exact
         typer.echo(f"history: every {stride}th step kept (ROCKARCH_MAX_SAMPLES)")
     if plot is not None:
         typer.echo(f"wrote {plot}")
+
+
+def _step_note(half: dict) -> str:
+    """The line saying that a history changes at h/2 (:func:`rockarch.mdof.simulate`)."""
+    got = (f"OVERTURNED at t = {half['t_overturn']:.4f} s" if half["overturned"] else
+           f"safe, max rotation / its overturning value = {half['max_rotation_ratio']:.4f}")
+    return (f"note: sensitive to the time step: at h/2 (--h-factor {half['h_factor']:g}) "
+            f"{got}; read verdicts from maps or suites (docs/mdof.md, Convergence on "
+            "records)")
 
 
 @simulate_app.command("block")
@@ -208,6 +220,12 @@ def simulate_mdof(
                               "which the engine starts a mechanism under a slow ramp (0.1 "
                               "g/s, from rest, both directions), beside ap,min: walls with "
                               "high friction stand above it (docs/assemblies.md)."),
+    step_check: bool = typer.Option(None, "--step-check/--no-step-check", help="Run the "
+                                    "history again at h/2 and say if the verdict changes "
+                                    "(or the largest rotation by more than 0.1 of its "
+                                    "overturning value); default: on for chains without "
+                                    f"friction and up to {STEP_CHECK_MAX_BLOCKS} blocks "
+                                    "(the rerun costs twice the run)."),
     **opts,
 ) -> None:
     """Simulate a multi-block structure whose joints open, close and (with --friction)
@@ -222,7 +240,8 @@ def simulate_mdof(
     header, extra = _mdof_header(sysobj.assembly), {"ap_min": sysobj.ap_min}
     if ramp:
         header, extra = _with_ramp(sysobj.assembly, header, extra)
-    _run(sysobj, header, {**opts, "plot": plot, "json_out": json_out}, extra=extra)
+    _run(sysobj, header, {**opts, "plot": plot, "json_out": json_out}, extra=extra,
+         check_step=step_check)
     if mechanism is not None and not json_out:
         typer.echo(f"wrote {mechanism}")
 

@@ -11,7 +11,7 @@ contacts wherever a corner reaches a face, :mod:`rockarch.mdof.collision`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -25,6 +25,21 @@ from rockarch.mdof import graph_run as _g
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.kernel_data import chain_model, graph_model
 from rockarch.motion.signals import GroundMotion
+
+#: Step check of one history (:func:`simulate`, ``check_step``): the rerun at h/2 calls the
+#: history sensitive to the step when its verdict differs, or (both safe) its largest
+#: rotation ratio differs by more than this, in units of the overturning rotation δ_ref.
+#: The engine is O(h) at impacts, so the error at h is about twice the change h → h/2: a
+#: change of 0.1 is an error of ~0.2 δ_ref, a fifth of the way to the verdict's threshold
+#: (1). Measured on the pulses of docs/mdof.md (20-voussoir catenary, sine/square/step,
+#: 20 × 26 cells, default step): the safe histories change by 0.003 δ_ref (median) and 3 of
+#: 193 by more than 0.1 (docs/mdof.md, "Convergence on records").
+STEP_CHECK_ROTATION = 0.1
+#: By default (``check_step=None`` of :meth:`rockarch.systems.MDOFSystem.simulate`, the CLI
+#: without ``--step-check``) every structure on the chain stepper is checked (the rerun
+#: costs about twice the run: milliseconds to seconds) and, on the general stepper, those
+#: of at most this many blocks (a wall of hundreds of blocks takes minutes per history).
+STEP_CHECK_MAX_BLOCKS = 20
 
 
 def check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
@@ -60,14 +75,34 @@ class MDOFResponse(Response):
     max_slip: float = 0.0
     sliding_contacts_max: int = 0
     new_contacts_max: int = 0
+    h_half: dict | None = None
+
+    @property
+    def step_sensitive(self) -> bool | None:
+        """True if the rerun at h/2 (``h_half``, from ``check_step``) changes the verdict or,
+        both safe, the largest rotation ratio by more than :data:`STEP_CHECK_ROTATION`;
+        None if the history was not checked."""
+        half = self.h_half
+        if half is None:
+            return None
+        if half["overturned"] != self.overturned:
+            return True
+        return (not self.overturned and abs(half["max_rotation_ratio"]
+                                            - self.max_rotation_ratio) > STEP_CHECK_ROTATION)
 
     def to_dict(self) -> dict:
         """The verdict plus ``open_joints_max``, ``max_slip`` (m) and
-        ``sliding_contacts_max`` (the CLI's ``--json`` output)."""
-        return {**super().to_dict(), "open_joints_max": int(self.open_joints_max),
-                "max_slip": float(self.max_slip),
-                "sliding_contacts_max": int(self.sliding_contacts_max),
-                "new_contacts_max": int(self.new_contacts_max)}
+        ``sliding_contacts_max`` (the CLI's ``--json`` output); for a checked history
+        ``h_half`` (the rerun's ``h_factor``, verdict and largest rotation ratio) and
+        ``step_sensitive``."""
+        out = {**super().to_dict(), "open_joints_max": int(self.open_joints_max),
+               "max_slip": float(self.max_slip),
+               "sliding_contacts_max": int(self.sliding_contacts_max),
+               "new_contacts_max": int(self.new_contacts_max)}
+        if self.h_half is not None:
+            out["h_half"] = dict(self.h_half)
+            out["step_sensitive"] = bool(self.step_sensitive)
+        return out
 
     def corners_at(self, i: int) -> np.ndarray:
         """Block outlines at record i: list of (K, 2) arrays in the ground frame."""
@@ -86,6 +121,12 @@ class MDOFResponse(Response):
 def uses_chain_stepper(assembly: Assembly) -> bool:
     """True if the assembly runs on the banded chain stepper (a chain, no friction)."""
     return assembly.is_chain and assembly.frictionless
+
+
+def checks_step_by_default(assembly: Assembly) -> bool:
+    """True if a single history of the assembly is rerun at h/2 unless told otherwise: on
+    the chain stepper, or with at most :data:`STEP_CHECK_MAX_BLOCKS` blocks."""
+    return uses_chain_stepper(assembly) or assembly.n_blocks <= STEP_CHECK_MAX_BLOCKS
 
 
 def _motion_arrays(motion: GroundMotion | None):
@@ -114,7 +155,8 @@ def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: in
 
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
              t_free: float = T_FREE, h_factor: float = H_FACTOR, gap_tol: float = GAP_TOL,
-             record_every: int = 1, through_collapse: bool = False) -> MDOFResponse:
+             record_every: int = 1, through_collapse: bool = False,
+             check_step: bool = False) -> MDOFResponse:
     """Simulate the assembly on the ground motion (used as given, m/s²).
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
@@ -123,9 +165,31 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     :data:`rockarch.core.limits.MAX_HISTORY_BYTES`). ``through_collapse``: follow the blocks
     after a collapse (falling, landing, coming to rest) until rest or the end of the free
     motion (on the general stepper, whose new contacts let them land); the verdict and
-    ``t_overturn`` are those of the first collapse.
+    ``t_overturn`` are those of the first collapse. ``check_step``: run the history again
+    at h/2 (its verdict only, no history kept) and report it in ``h_half`` and
+    ``step_sensitive`` (:data:`STEP_CHECK_ROTATION`): a chaotic history may change its
+    verdict with the step while maps and suites do not (docs/mdof.md, "Convergence on
+    records").
     """
     check_settings(t_free, h_factor, gap_tol)
+    if not isinstance(check_step, (bool, np.bool_)):
+        raise TypeError(f"check_step must be True or False, got {type(check_step).__name__}")
+    res = _simulate(assembly, motion, p, t_free, h_factor, gap_tol, record_every,
+                    through_collapse)
+    if not check_step:
+        return res
+    # the verdict at h/2 (Moreau–Jean is O(h) at impacts); a history of two samples
+    half = _simulate(assembly, motion, p, t_free, h_factor / 2, gap_tol, 2 ** 40,
+                     through_collapse)
+    return replace(res, h_half={"h_factor": h_factor / 2, "overturned": half.overturned,
+                                "t_overturn": half.t_overturn,
+                                "max_rotation_ratio": half.max_rotation_ratio})
+
+
+def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
+              t_free: float, h_factor: float, gap_tol: float, record_every: int,
+              through_collapse: bool) -> MDOFResponse:
+    """:func:`simulate` without the step check (its settings already checked)."""
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
                                                              lo_open=True, hi_open=True)) \
         / assembly.size
