@@ -11,8 +11,8 @@ own ap,min and p, as `rockarch oas --system mdof`) at h·p = 0.005 (the default)
    10 synthetic records of `rockarch records synth DIR --n 10 --seed 0`: its change with h.
 
 ``--friction`` also runs part 1 with μ = 0.5 at every joint (the general stepper) on a
-smaller grid (6 × 6 cells, El Centro 180 only). ``--h-factors`` sets the three steps
-(``--h-factors 0.0025,0.00125,0.000625``: the next halvings, ≈ 25 min).
+smaller grid (6 × 6 cells, El Centro 180 only; ≈ 2 min more). ``--h-factors`` sets the
+three steps (``--h-factors 0.0025,0.00125,0.000625``: the next halvings, ≈ 25 min).
 
 Run:  .venv/bin/python examples/mdof_record_convergence.py      (≈ 15 min on 2 cores)
 

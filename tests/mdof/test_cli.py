@@ -137,7 +137,7 @@ def _catenary():
     return catenary(10.0, 3.0, 0.25)
 
 
-@pytest.mark.slow  # two runs of the whole El Centro record at h·p = 0.0005: ~15 s
+@pytest.mark.slow  # two runs of the whole El Centro record at h·p = 0.0005: ~10 s
 def test_step_check_on_el_centro_matches_an_explicit_rerun():
     """The README arch at 1.5·ap,min on El Centro 180, --h-factor 0.001: collapsed at
     t = 9.3 s, safe at 0.0005 (measured; chaotic, so only the consistency is asserted)."""
