@@ -45,6 +45,8 @@ class MDOFResponse(Response):
     [m] (0 for the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding
     at once, ``new_contacts_max`` the most new contacts carrying an impulse at once (corners
     pressing on a face they did not touch as built, docs/theory.md Eq. (9.10)).
+    ``steps_at_rest`` of the ``steps`` were not solved: the structure was at rest and the
+    ground acceleration kept it there (docs/theory.md Eq. (9.11); general stepper only).
     """
 
     assembly: Assembly
@@ -60,6 +62,7 @@ class MDOFResponse(Response):
     max_slip: float = 0.0
     sliding_contacts_max: int = 0
     new_contacts_max: int = 0
+    steps_at_rest: int = 0
 
     def to_dict(self) -> dict:
         """The verdict plus ``open_joints_max``, ``max_slip`` (m) and
@@ -114,7 +117,8 @@ def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: in
 
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
              t_free: float = T_FREE, h_factor: float = H_FACTOR, gap_tol: float = GAP_TOL,
-             record_every: int = 1, through_collapse: bool = False) -> MDOFResponse:
+             record_every: int = 1, through_collapse: bool = False,
+             skip_rest: bool = True) -> MDOFResponse:
     """Simulate the assembly on the ground motion (used as given, m/s²).
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
@@ -123,7 +127,9 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     :data:`rockarch.core.limits.MAX_HISTORY_BYTES`). ``through_collapse``: follow the blocks
     after a collapse (falling, landing, coming to rest) until rest or the end of the free
     motion (on the general stepper, whose new contacts let them land); the verdict and
-    ``t_overturn`` are those of the first collapse.
+    ``t_overturn`` are those of the first collapse. ``skip_rest`` False solves every step
+    of the general stepper, also those where the structure is at rest and stays there
+    (docs/theory.md Eq. (9.11); the reference of that shortcut's tests and benchmarks).
     """
     check_settings(t_free, h_factor, gap_tol)
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
@@ -141,12 +147,12 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     if uses_chain_stepper(assembly) and not through_collapse:
         model = chain_model(assembly)
         out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e) + (0.0, 0, 0)
+                     out_q, out_s, out_e) + (0.0, 0, 0, 0)
     else:
         model = graph_model(assembly)
         out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e, bool(through_collapse))
-    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points = out[:11]
+                     out_q, out_s, out_e, bool(through_collapse), bool(skip_rest))
+    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points, n_rest = out[:12]
     c0 = model.c0
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
@@ -160,7 +166,8 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
         t_end=float(out_t[n_rec - 1]) if n_rec else 0.0,
         impacts=int(imp), open_joints_max=int(nopen), steps=int(steps), h=h,
         lcp_failures=int(fails), ground=motion, max_slip=float(slip),
-        sliding_contacts_max=int(n_slide), new_contacts_max=int(n_points))
+        sliding_contacts_max=int(n_slide), new_contacts_max=int(n_points),
+        steps_at_rest=int(n_rest))
 
 
 def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
