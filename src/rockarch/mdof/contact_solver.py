@@ -648,15 +648,17 @@ def _bound(c0, c1, lo, hi):
 
 @nb.njit(cache=True)
 def rest_interval(nbod, n_rows, rba, rbb, ja, jb, bias, tn0, tn1, tmu, eps_n, eps_t, sw,
-                  tol_u, tol_l, lref, h, g, lam0, lam1):
+                  tol_u, tol_l, lref, h, g, v_rest, lam0, lam1):
     """The mean ground accelerations ā of a step for which a structure at rest stays at
     rest (docs/theory.md Eq. (9.11)): with v = 0 before the step and the rows' present
     states, the step's solution (9.7) and its impulses are affine in ā, Λ = Λ₀ + ā·Λ₁
     (``lam0``, ``lam1``), and these states solve the step within (tol_u, tol_l) while every
     closed row stays in compression, every open one does not move in, every sticking one
     stays in its cone, every sliding one (a slip slower than tol_u: a joint at its cone's
-    edge) does not turn back, and every body moves slower than ``tol_u`` (the creep of the
-    regularised rows). Returns (lo, hi); lo > hi: the states do not hold."""
+    edge) does not turn back, and every body moves slower than ``v_rest`` (the creep of
+    the regularised rows stays below it; a motion that starts under an unbalanced
+    acceleration a exceeds it after one step once a > v_rest/h). Returns (lo, hi); lo > hi:
+    the states do not hold."""
     lo, hi = -math.inf, math.inf
     for r in range(n_rows):
         if tn0[r] < 0:
@@ -683,8 +685,8 @@ def rest_interval(nbod, n_rows, rba, rbb, ja, jb, bias, tn0, tn1, tmu, eps_n, ep
     for i in range(3 * nbod):  # the bodies' speeds: creep only
         w = lref if i % 3 == 2 else 1.0
         v1 = (sw.v[i] - sw.g[i]) * w
-        lo, hi = _bound(tol_u - sw.g[i] * w, -v1, lo, hi)
-        lo, hi = _bound(tol_u + sw.g[i] * w, v1, lo, hi)
+        lo, hi = _bound(v_rest - sw.g[i] * w, -v1, lo, hi)
+        lo, hi = _bound(v_rest + sw.g[i] * w, v1, lo, hi)
     for r in range(n_rows):
         lam1[r] -= lam0[r]
         if tn0[r] < 0:

@@ -34,6 +34,10 @@ LAM_TOL = 1e-6
 #: the distance two corners can close meanwhile: the contacts found are kept (as speculative
 #: rows, inactive while they do not close) until the next search.
 DETECT_EVERY = 8
+#: A structure whose every point moves slower than this fraction of g·h is at rest (docs/theory.md
+#: Eq. (9.11)): above the creep of the regularised rows of a 20-course wall (7e-6·g·h), and
+#: reached within one step by any motion driven by an unbalanced acceleration above 1e-4·g.
+REST_SPEED = 1e-4
 
 
 @nb.njit(cache=True)
@@ -163,13 +167,14 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     eps = EPS_T * wmax
     eps_n = EPS_N * wmax
     tol_u = LAM_TOL * g * h
+    v_rest = REST_SPEED * g * h
     tol_l = LAM_TOL * g * h / wmax
     e_scale = mass.sum() * g * m.thick_min * scale
     status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
     slide_max, max_slip, points_max = 0, 0.0, 0
     t, step, i_prev = 0.0, 0, 0.0
     n_steps = int(math.ceil(t_end / h))
-    next_search, v_search = 0, 0.0
+    next_search, v_search, next_rest, rest_wait = 0, 0.0, 0, 1
     a_max = 0.0
     lam0 = np.zeros(ws.lam.shape[0])
     lam1 = np.zeros(ws.lam.shape[0])
@@ -258,14 +263,19 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         if t >= t_motion and n_open == 0 and n_sl == 0:
             if kin.kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
                 break
-        if not skip_rest or its < 0 or n_sl > 0 or step >= n_steps \
-                or _vmax(vx, vy, om, rad) > tol_u:
+        if not skip_rest or its < 0 or n_sl > 0 or step >= n_steps or step < next_rest \
+                or _vmax(vx, vy, om, rad) > v_rest:
             continue
         # at rest: skip the steps whose mean ground acceleration keeps it at rest (Eq. 9.11)
         lo, hi = rest_interval(nbod, 3 * nj + 2 * ws.cnt[0], ws.rba, ws.rbb, ws.ja, ws.jb,
                                ws.bias, ws.tn0, ws.tn1, ws.tmu, eps_n, eps, ws.sw, tol_u,
-                               tol_l, ws.lref[0], h, g, lam0, lam1)
+                               tol_l, ws.lref[0], h, g, v_rest, lam0, lam1)
         a_last = math.nan
+        if lo <= hi:
+            rest_wait = 1
+        else:  # these states do not rest: look again later, twice as late every time
+            next_rest = step + rest_wait
+            rest_wait = min(2 * rest_wait, 64)
         while lo <= hi and step < n_steps:
             i_new, agbar = kin.ground_increment(t, h, i_prev, tk, ak, ck, amp)
             if not lo <= agbar <= hi:
