@@ -11,19 +11,32 @@ Prints the load average, then per structure the median wall time (3 runs) of
 of the two 205-block walls with mu = 0.6 (``ra.system``: the analyses with and without
 sliding, both directions, one run each: wall time and CPU time of this process, converged
 or not), without the statics store.
+
+``--breakdown`` then runs the tall wall's four analyses once more, one after the other,
+under cProfile with the process CPU clock: CPU seconds per analysis and the LPs it took,
+and over all four the time inside HiGHS' warm-started solves (highspy), inside scipy's
+``linprog`` (the associative LPs and the macro-block checks); and, before them and
+without the profiler (whose overhead per Python call would inflate it), the cluster
+enumeration of Eq. (10.9) that they share.
 """
 
 from __future__ import annotations
 
+import cProfile
 import os
+import pstats
 import statistics
+import sys
 import time
 import warnings
+
+import numpy as np
 
 import rockarch as ra
 from rockarch import mdof
 from rockarch.arch import catenary
 from rockarch.mdof import builders as bd
+from rockarch.mdof import macroblock, statics
 
 
 def median_time(fn, repeat: int = 3) -> tuple[float, object]:
@@ -62,6 +75,37 @@ def main() -> None:
         print(f"wall {wall} ({a.n_blocks} blocks), mu 0.6: build {wall_s:.1f} s "
               f"({cpu_s:.1f} s CPU), ap_min {a.ap_min / a.g:.4f} g, without sliding "
               f"{a.info['ap_min_no_sliding'] / a.g:.4f} g, {conv}", flush=True)
+    if "--breakdown" in sys.argv[1:]:  # the last wall built: the tall one
+        breakdown(a)
+
+
+def breakdown(a) -> None:
+    """Where the statics of assembly ``a`` spend their CPU time (see the module text)."""
+    args = (a.mass, a.inertia, a.centroid, a.corners, a.normal, a.body_a, a.body_b)
+    macroblock._CACHE.clear()  # the build filled it: enumerate again, without the profiler
+    c0 = time.process_time()
+    macroblock.clusters(args[2:7], float(np.ptp(a.corners.reshape(-1, 2), axis=0).max()))
+    total = clusters = time.process_time() - c0  # the analyses below reuse them
+    prof = cProfile.Profile(time.process_time)
+    for mu in (a.mu, None):
+        for d in (1, -1):
+            c0 = time.process_time()
+            prof.enable()
+            c = statics.limit_analysis(*args, mu, g=a.g, direction=d)
+            prof.disable()
+            cpu = time.process_time() - c0
+            total += cpu
+            print(f"  {'mu 0.6' if mu is not None else 'no sliding'}, direction {d:+d}: "
+                  f"{cpu:.2f} s CPU, {c.iterations} LPs, ap_min {c.lambda_:.4f} g")
+    stats = pstats.Stats(prof).stats  # {(file, line, name): (cc, nc, tottime, cumtime, ..)}
+
+    def own(name: str) -> float:  # time inside a built-in
+        return sum(v[2] for k, v in stats.items() if k[2] == name)
+
+    print(f"  all {total:.2f} s CPU (profiled): HiGHS warm-started "
+          f"{own('<built-in method highspy._core.run>'):.2f} s, scipy linprog "
+          f"{own('<built-in method scipy.optimize._highspy._core.run>'):.2f} s, "
+          f"clusters of Eq. (10.9) {clusters:.2f} s (not profiled)")
 
 
 if __name__ == "__main__":

@@ -632,3 +632,93 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     for i in range(3 * nbod):
         sw.v[i] = sw.vf[i] + sw.g[i] / sw.mdiag[i]
     return -1 - total
+
+
+@nb.njit(cache=True, inline="always")
+def _bound(c0, c1, lo, hi):
+    """Intersect [lo, hi] with {a : c0 + a·c1 ≥ 0}."""
+    if c1 > 0.0:
+        lo = max(lo, -c0 / c1)
+    elif c1 < 0.0:
+        hi = min(hi, -c0 / c1)
+    elif c0 < 0.0:
+        hi = -math.inf
+    return lo, hi
+
+
+@nb.njit(cache=True)
+def rest_interval(nbod, n_rows, rba, rbb, ja, jb, bias, tn0, tn1, tmu, eps_n, eps_t, sw,
+                  tol_u, tol_l, lref, h, g, v_rest, lam0, lam1):
+    """The mean ground accelerations ā of a step for which a structure at rest stays at
+    rest (docs/theory.md Eq. (9.11)): with v = 0 before the step and the rows' present
+    states, the step's solution (9.7) and its impulses are affine in ā, Λ = Λ₀ + ā·Λ₁
+    (``lam0``, ``lam1``), and these states solve the step within (tol_u, tol_l) while every
+    closed row stays in compression, every open one does not move in, every sticking one
+    stays in its cone, every sliding one (a slip slower than tol_u: a joint at its cone's
+    edge) does not turn back, and every body moves slower than ``v_rest`` (the creep of
+    the regularised rows stays below it; a motion that starts under an unbalanced
+    acceleration a exceeds it after one step once a > v_rest/h). Returns (lo, hi); lo > hi:
+    the states do not hold."""
+    lo, hi = -math.inf, math.inf
+    for r in range(n_rows):
+        if tn0[r] < 0:
+            continue
+        if sw.st[r] == 2 and not math.isinf(tmu[r]):
+            return 1.0, -1.0
+    _weights(n_rows, tn0, eps_n, eps_t, 0.0, sw.ie)
+    tol_sol = 1e-3 * tol_u
+    for case in range(2):  # ā = 0, then ā = 1
+        for j in range(nbod):
+            sw.vf[3 * j] = -h * case
+            sw.vf[3 * j + 1] = -h * g
+            sw.vf[3 * j + 2] = 0.0
+        if not _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, sw.st, tn0, tn1, tmu, sw.ie,
+                          sw, lref, tol_sol, 0.0):
+            return 1.0, -1.0
+        _ssn_impulses(n_rows, rba, rbb, ja, jb, bias, sw.st, tn0, tn1, tmu, sw.ie, sw,
+                      lam0 if case == 0 else lam1)
+        if case == 0:
+            for i in range(3 * nbod):
+                sw.g[i] = sw.v[i]
+            for r in range(n_rows):
+                sw.bias2[r] = sw.u[r]
+    for i in range(3 * nbod):  # the bodies' speeds: creep only
+        w = lref if i % 3 == 2 else 1.0
+        v1 = (sw.v[i] - sw.g[i]) * w
+        lo, hi = _bound(v_rest - sw.g[i] * w, -v1, lo, hi)
+        lo, hi = _bound(v_rest + sw.g[i] * w, v1, lo, hi)
+    for r in range(n_rows):
+        lam1[r] -= lam0[r]
+        if tn0[r] < 0:
+            if sw.st[r] == 0:
+                lo, hi = _bound(lam0[r] + tol_l, lam1[r], lo, hi)
+            else:
+                lo, hi = _bound(sw.bias2[r] + tol_u, sw.u[r] - sw.bias2[r], lo, hi)
+            continue
+        s0 = 0.0
+        s1 = 0.0
+        for c in range(2):
+            q = tn0[r] if c == 0 else tn1[r]
+            if q >= 0 and sw.st[q] == 0:
+                s0 += lam0[q]
+                s1 += lam1[q]
+        if sw.st[r] == 2:  # μ = ∞ without compression: no shear while none comes
+            lo, hi = _bound(tol_l - s0, -s1, lo, hi)
+        else:
+            lo, hi = _bound(s0, s1, lo, hi)
+            if st_slides(sw.st[r]):  # slips slower than tol_u (the bodies' speeds): keeps on
+                s = sw.st[r]
+                lo, hi = _bound(tol_u - s * sw.bias2[r], -s * (sw.u[r] - sw.bias2[r]), lo, hi)
+            elif not math.isinf(tmu[r]):
+                mu = tmu[r]
+                lo, hi = _bound(mu * s0 + tol_l - lam0[r], mu * s1 - lam1[r], lo, hi)
+                lo, hi = _bound(mu * s0 + tol_l + lam0[r], mu * s1 + lam1[r], lo, hi)
+        if lo > hi:
+            break
+    return lo, hi
+
+
+@nb.njit(cache=True, inline="always")
+def st_slides(s):
+    """A tangential row's state slides (±1)."""
+    return s == 1 or s == -1

@@ -16,6 +16,7 @@ import numpy as np
 from rockarch.mdof import kinematics as kin
 from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
+from rockarch.mdof.contact_solver import rest_interval
 from rockarch.mdof.graph_stepper import OFF_GAP, contact_step, make_work, project
 
 #: Regularisation ε_n of the normal rows, relative to the largest inverse mass
@@ -33,6 +34,10 @@ LAM_TOL = 1e-6
 #: the distance two corners can close meanwhile: the contacts found are kept (as speculative
 #: rows, inactive while they do not close) until the next search.
 DETECT_EVERY = 8
+#: A structure whose every point moves slower than this fraction of g·h is at rest (docs/theory.md
+#: Eq. (9.11)): above the creep of the regularised rows of a 20-course wall (7e-6·g·h), and
+#: reached within one step by any motion driven by an unbalanced acceleration above 1e-4·g.
+REST_SPEED = 1e-4
 
 
 @nb.njit(cache=True)
@@ -122,12 +127,18 @@ def _fallen(m, gap):
 
 @nb.njit(cache=True)
 def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, out_q,
-        out_state, out_e, through):
+        out_state, out_e, through, skip_rest=True):
     """Simulate one assembly (``m``: a :class:`rockarch.mdof.kernel_data.GraphModel`) scaled
     by ``scale`` (lengths) on amp·a(t) [m/s²]; ``through``: go on after a collapse (until
     rest or t_end) instead of stopping there. Returns (status, t_collapse,
     max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max,
-    most new contacts carrying an impulse at once)."""
+    most new contacts carrying an impulse at once, steps skipped at rest).
+
+    A structure at rest stays at rest while the step's mean ground acceleration stays in
+    the interval where its contact forces remain admissible (docs/theory.md Eq. (9.11),
+    :func:`rockarch.mdof.contact_solver.rest_interval`): those steps are not solved again,
+    only counted and recorded (``skip_rest`` False: every step is solved, the reference of
+    the shortcut's tests and benchmarks)."""
     mass = m.mass
     g = m.g
     nbod = mass.shape[0]
@@ -156,14 +167,18 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     eps = EPS_T * wmax
     eps_n = EPS_N * wmax
     tol_u = LAM_TOL * g * h
+    v_rest = REST_SPEED * g * h
     tol_l = LAM_TOL * g * h / wmax
     e_scale = mass.sum() * g * m.thick_min * scale
     status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
     slide_max, max_slip, points_max = 0, 0.0, 0
     t, step, i_prev = 0.0, 0, 0.0
     n_steps = int(math.ceil(t_end / h))
-    next_search, v_search = 0, 0.0
+    next_search, v_search, next_rest, rest_wait = 0, 0.0, 0, 1
     a_max = 0.0
+    lam0 = np.zeros(ws.lam.shape[0])
+    lam1 = np.zeros(ws.lam.shape[0])
+    skipped = 0
     for i in range(ak.shape[0]):
         a_max = max(a_max, abs(amp * ak[i]))
     while step < n_steps:
@@ -248,8 +263,47 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         if t >= t_motion and n_open == 0 and n_sl == 0:
             if kin.kinetic(mass, ws.ii, vx, vy, om) < 1e-12 * e_scale:
                 break
+        if not skip_rest or its < 0 or n_sl > 0 or step >= n_steps or step < next_rest \
+                or _vmax(vx, vy, om, rad) > v_rest:
+            continue
+        # at rest: skip the steps whose mean ground acceleration keeps it at rest (Eq. 9.11)
+        lo, hi = rest_interval(nbod, 3 * nj + 2 * ws.cnt[0], ws.rba, ws.rbb, ws.ja, ws.jb,
+                               ws.bias, ws.tn0, ws.tn1, ws.tmu, eps_n, eps, ws.sw, tol_u,
+                               tol_l, ws.lref[0], h, g, v_rest, lam0, lam1)
+        a_last = math.nan
+        if lo <= hi:
+            rest_wait = 1
+        else:  # these states do not rest: look again later, twice as late every time
+            next_rest = step + rest_wait
+            rest_wait = min(2 * rest_wait, 64)
+        while lo <= hi and step < n_steps:
+            i_new, agbar = kin.ground_increment(t, h, i_prev, tk, ak, ck, amp)
+            if not lo <= agbar <= hi:
+                break
+            if math.isnan(a_last):
+                for j in range(nbod):
+                    vx[j] = 0.0
+                    vy[j] = 0.0
+                    om[j] = 0.0
+            i_prev = i_new
+            a_last = agbar
+            t += h
+            step += 1
+            skipped += 1
+            if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
+                kin.record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
+                out_e[n_rec] = kin.energy(mass, ws.ii, vx, vy, om, y, cy0, g)
+                n_rec += 1
+            if t >= t_motion and n_open == 0:
+                break
+        if not math.isnan(a_last):
+            for r in range(3 * nj + 2 * ws.cnt[0]):
+                ws.lam[r] = lam0[r] + a_last * lam1[r]
+            next_search = step
+            if t >= t_motion and n_open == 0:
+                break
     return (status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max,
-            points_max)
+            points_max, skipped)
 
 
 @nb.njit(cache=True, parallel=True)

@@ -18,31 +18,37 @@ import threading
 
 import numpy as np
 from scipy.optimize import linprog
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import breadth_first_order
 
 from rockarch.mdof.nonassoc import Iterate
 
 
-def _closure(start: int, pivot, omega: float, kin, tol: float):
-    """The blocks that must rotate with ``start`` about ``pivot`` (rate ω) so that no
-    boundary corner penetrates; None if a fixed support is in the way."""
+def _drags(pivot, omega: float, kin, tol: float) -> csr_matrix:
+    """The directed graph "i rotating about ``pivot`` drags j along" (node nb: the ground):
+    at a joint with i inside and j outside, a corner of j would be penetrated (its normal
+    relative velocity below -tol), so j must join the cluster."""
     centroid, corners, normal, body_a, body_b = kin
     nb_ = len(centroid)
-    ins = np.zeros(nb_ + 1, dtype=bool)  # index nb_ (= -1): the ground, never moves
-    ins[start] = True
-    while True:
-        ia, ib = ins[body_a], ins[body_b]
-        bnd = ia ^ ib
-        r = corners[bnd] - pivot  # (m, 2, 2)
-        vel = omega * np.stack([-r[..., 1], r[..., 0]], axis=-1)
-        dn = np.einsum("mcd,md->mc", vel, normal[bnd])
-        dn = np.where(ib[bnd][:, None], dn, -dn)  # relative velocity of b w.r.t. a
-        bad = (dn < -tol).any(axis=1)
-        if not bad.any():
-            return ins[:nb_]
-        other = np.where(ib[bnd][bad], body_a[bnd][bad], body_b[bnd][bad])
-        if (other < 0).any():
-            return None
-        ins[other] = True
+    r = corners - pivot  # (nj, 2, 2)
+    dn = omega * np.einsum("kcd,kd->kc", np.stack([-r[..., 1], r[..., 0]], axis=-1), normal)
+    a, b = np.where(body_a < 0, nb_, body_a), np.where(body_b < 0, nb_, body_b)
+    b_in = (dn < -tol).any(axis=1)  # b inside, a outside: b's motion w.r.t. a penetrates
+    a_in = (dn > tol).any(axis=1)   # a inside, b outside: the same, mirrored
+    src = np.r_[b[b_in], a[a_in]]
+    dst = np.r_[a[b_in], b[a_in]]
+    return csr_matrix((np.ones(len(src)), (src, dst)), shape=(nb_ + 1, nb_ + 1))
+
+
+def _reach(graph: csr_matrix, start: int, nb_: int):
+    """The cluster of ``start`` in the drag graph: every block it reaches (an (nb,) bool
+    mask), or None if it reaches the ground."""
+    seen = breadth_first_order(graph, start, directed=True, return_predecessors=False)
+    if (seen == nb_).any():
+        return None
+    ins = np.zeros(nb_, dtype=bool)
+    ins[seen] = True
+    return ins
 
 
 #: Clusters of recent geometries (both load directions and both friction analyses of one
@@ -67,8 +73,8 @@ def clusters(kin, size: float) -> list:
 
 def _enumerate(kin, size: float) -> list:
     centroid, corners, normal, body_a, body_b = kin
-    nj, tol = len(normal), 1e-9 * size
-    seen, out = set(), []
+    nj, nb_, tol = len(normal), len(centroid), 1e-9 * size
+    seen, out, graphs = set(), [], {}
     for k in range(nj):
         for c in range(2):
             pivot = corners[k, c]
@@ -76,7 +82,10 @@ def _enumerate(kin, size: float) -> list:
                 for omega in (1.0, -1.0):
                     if start < 0:
                         continue
-                    s = _closure(int(start), pivot, omega, kin, tol)
+                    gkey = (pivot.tobytes(), omega)  # joints share corners: one graph each
+                    if gkey not in graphs:
+                        graphs[gkey] = _drags(pivot, omega, kin, tol)
+                    s = _reach(graphs[gkey], int(start), nb_)
                     if s is None:  # the whole structure is a cluster too: a block
                         continue   # jammed against a support by self-stress rocks away
                     key_s = (s.tobytes(), k, c, omega)

@@ -119,8 +119,8 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
             progress: bool | None = None) -> Outcome:
     """Gilbert–Casapulla–Ahmed iteration from the associative state (Eqs. 10.6–10.8).
 
-    ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Joints of finite μ
-    relax their normal forces (10.7); joints of μ = ∞ take the new ones at once (their
+    ``sliding_of(duals)`` gives the sliding joints of an LP's mechanism. Normal forces relax
+    (10.7), except that the opening corners of joints of μ = ∞ drop to zero at once (their
     capacity depends only on whether a corner is compressed, so relaxing would only creep
     towards zero, one halving per LP). Convergence: |Δλ| ≤ 1e-9·max(1, λ),
     max|N − Ñ| ≤ 1e-7·Σ m·g at finite-μ joints and the same compressed corners at μ = ∞
@@ -154,7 +154,9 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
             if (abs(cur.lambda_ - lam_prev) <= TOL_LAMBDA * max(1.0, cur.lambda_)
                     and err <= TOL_FORCE and np.array_equal(n_new <= zero, nt <= zero)):
                 return Outcome(cur, True, k + 1, tuple(hist))
-            lam_prev, nt = cur.lambda_, np.where(fin, nt + RELAX * (n_new - nt), n_new)
+            # (10.7); at μ = ∞ an opening corner drops to zero at once, the others relax
+            lam_prev, nt = cur.lambda_, np.where(fin | (n_new > zero), nt + RELAX * (n_new - nt),
+                                                 n_new)
     return Outcome(best, False, len(hist), tuple(hist))
 
 

@@ -60,6 +60,8 @@ class MDOFResponse(Response):
     [m] (0 for the no-sliding chain model), ``sliding_contacts_max`` the most joints sliding
     at once, ``new_contacts_max`` the most new contacts carrying an impulse at once (corners
     pressing on a face they did not touch as built, docs/theory.md Eq. (9.10)).
+    ``steps_at_rest`` of the ``steps`` were not solved: the structure was at rest and the
+    ground acceleration kept it there (docs/theory.md Eq. (9.11); general stepper only).
     """
 
     assembly: Assembly
@@ -75,6 +77,7 @@ class MDOFResponse(Response):
     max_slip: float = 0.0
     sliding_contacts_max: int = 0
     new_contacts_max: int = 0
+    steps_at_rest: int = 0
     h_half: dict | None = None
 
     @property
@@ -156,7 +159,7 @@ def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: in
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
              t_free: float = T_FREE, h_factor: float = H_FACTOR, gap_tol: float = GAP_TOL,
              record_every: int = 1, through_collapse: bool = False,
-             check_step: bool = False) -> MDOFResponse:
+             check_step: bool = False, skip_rest: bool = True) -> MDOFResponse:
     """Simulate the assembly on the ground motion (used as given, m/s²).
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
@@ -169,18 +172,20 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     at h/2 (its verdict only, no history kept) and report it in ``h_half`` and
     ``step_sensitive`` (:data:`STEP_CHECK_ROTATION`): a chaotic history may change its
     verdict with the step while maps and suites do not (docs/mdof.md, "Convergence on
-    records").
+    records"). ``skip_rest`` False solves every step of the general stepper, also those
+    where the structure is at rest and stays there (docs/theory.md Eq. (9.11); the
+    reference of that shortcut's tests and benchmarks).
     """
     check_settings(t_free, h_factor, gap_tol)
     if not isinstance(check_step, (bool, np.bool_)):
         raise TypeError(f"check_step must be True or False, got {type(check_step).__name__}")
     res = _simulate(assembly, motion, p, t_free, h_factor, gap_tol, record_every,
-                    through_collapse)
+                    through_collapse, skip_rest)
     if not check_step:
         return res
     # the verdict at h/2 (Moreau–Jean is O(h) at impacts); a history of two samples
     half = _simulate(assembly, motion, p, t_free, h_factor / 2, gap_tol, 2 ** 40,
-                     through_collapse)
+                     through_collapse, skip_rest)
     return replace(res, h_half={"h_factor": h_factor / 2, "overturned": half.overturned,
                                 "t_overturn": half.t_overturn,
                                 "max_rotation_ratio": half.max_rotation_ratio})
@@ -188,7 +193,7 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
 
 def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
               t_free: float, h_factor: float, gap_tol: float, record_every: int,
-              through_collapse: bool) -> MDOFResponse:
+              through_collapse: bool, skip_rest: bool) -> MDOFResponse:
     """:func:`simulate` without the step check (its settings already checked)."""
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
                                                              lo_open=True, hi_open=True)) \
@@ -205,12 +210,12 @@ def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
     if uses_chain_stepper(assembly) and not through_collapse:
         model = chain_model(assembly)
         out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e) + (0.0, 0, 0)
+                     out_q, out_s, out_e) + (0.0, 0, 0, 0)
     else:
         model = graph_model(assembly)
         out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e, bool(through_collapse))
-    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points = out[:11]
+                     out_q, out_s, out_e, bool(through_collapse), bool(skip_rest))
+    st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points, n_rest = out[:12]
     c0 = model.c0
     # prepend the initial state
     q0 = np.zeros((1, nb_, 3))
@@ -224,7 +229,8 @@ def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
         t_end=float(out_t[n_rec - 1]) if n_rec else 0.0,
         impacts=int(imp), open_joints_max=int(nopen), steps=int(steps), h=h,
         lcp_failures=int(fails), ground=motion, max_slip=float(slip),
-        sliding_contacts_max=int(n_slide), new_contacts_max=int(n_points))
+        sliding_contacts_max=int(n_slide), new_contacts_max=int(n_points),
+        steps_at_rest=int(n_rest))
 
 
 def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,

@@ -38,7 +38,7 @@ from rockarch.mdof import statics_cache as sc
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
 #: Joints from which the non-associative iteration shows a progress bar on a terminal (the
-#: 205-block wall, 575 joints, takes about a minute).
+#: 205-block wall, 575 joints, takes a few seconds).
 PROGRESS_JOINTS = 100
 
 
