@@ -52,3 +52,12 @@ def test_no_citation_outside_the_repository():
            for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
            if re.search(r"physics note|\bissue \d+|shared/docs", line, flags=re.I)]
     assert not bad, bad
+
+
+def test_docs_cite_no_issue_number():
+    """The user's docs stand alone: no page cites a tracker's issue number."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    bad = [f"{p.relative_to(ROOT)}:{i}" for p in pages
+           for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+           if re.search(r"\bissues? \d+|the issue's|\bissue 2\d", line, flags=re.I)]
+    assert not bad, bad
