@@ -177,8 +177,9 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     reference of that shortcut's tests and benchmarks).
     """
     check_settings(t_free, h_factor, gap_tol)
-    if not isinstance(check_step, (bool, np.bool_)):
-        raise TypeError(f"check_step must be True or False, got {type(check_step).__name__}")
+    for name, flag in (("check_step", check_step), ("skip_rest", skip_rest)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError(f"{name} must be True or False, got {type(flag).__name__}")
     res = _simulate(assembly, motion, p, t_free, h_factor, gap_tol, record_every,
                     through_collapse, skip_rest)
     if not check_step:
