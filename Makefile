@@ -19,12 +19,15 @@ $(VENV)/.installed: pyproject.toml requirements.lock | $(BIN)/python
 demo: $(VENV)/.installed
 	$(BIN)/python examples/demo.py --out $(OUT)
 
-# The fast suite on every core (at most 4 workers: each holds its own numba kernels).
+# The fast suite on every core (at most 4 workers: each holds its own numba kernels), after
+# the kernels are compiled once, one group per core (tests/warm_kernels.py).
 test: $(VENV)/.installed
 	$(BIN)/ruff check src tests examples benchmarks validation
+	$(BIN)/python tests/warm_kernels.py
 	$(BIN)/python -m pytest -q -m "not slow" -n auto --maxprocesses 4
 
 test-all: $(VENV)/.installed
+	$(BIN)/python tests/warm_kernels.py
 	$(BIN)/python -m pytest -q
 	$(MAKE) docs
 
@@ -42,6 +45,7 @@ $(VENV)/.installed-docs: requirements-docs.lock | $(VENV)/.installed
 # The fast suite again with every ground motion moved in its last bit (tests/perturb/):
 # results move in their last bits, as on another machine; CI runs it after `make test`.
 test-perturbed: $(VENV)/.installed
+	$(BIN)/python tests/warm_kernels.py
 	ROCKARCH_PERTURB=1 $(BIN)/python -m pytest -q -m "not slow" -n auto --maxprocesses 4
 
 # The fast suite on the oldest versions pyproject.toml allows (.venv-oldest, made with uv's

@@ -29,3 +29,18 @@ def test_editing_a_callee_module_changes_the_cache_folder(tmp_path):
     solver = pkg / "mdof" / "contact_solver.py"
     solver.write_text(solver.read_text() + "\n# an edit\n")
     assert _jit_cache.source_digest(pkg) != before
+
+
+def test_each_run_kernel_is_compiled_once():
+    """A single run and a batch of runs use one compiled copy of each stepper: the motion
+    always arrives as a read-only array (``kernel_array``) and the batches pass their
+    options typed as the single runs do. A second signature would compile the general
+    stepper again (about 50 s on one core)."""
+    from rockarch.mdof import chain_stepper, graph_run
+    from rockarch.rocking import kernels
+    from tests import warm_kernels
+
+    for group in warm_kernels.GROUPS.values():
+        group()
+    for kernel in (graph_run.run, chain_stepper.run, kernels.run):
+        assert len(kernel.signatures) == 1, kernel.signatures

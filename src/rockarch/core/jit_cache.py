@@ -16,6 +16,7 @@ import os
 from pathlib import Path
 
 import numba
+import numpy as np
 
 #: The installed rockarch package (the folder whose ``.py`` files :func:`code_digest` reads).
 PACKAGE_ROOT = Path(__file__).resolve().parent.parent
@@ -66,3 +67,13 @@ def use_digest_cache() -> None:
     except OSError:
         return
     numba.config.CACHE_DIR = str(path)
+
+
+def kernel_array(x) -> np.ndarray:
+    """``x`` as a read-only C-contiguous float64 array, the one type in which every motion
+    reaches a kernel: numba compiles a kernel once per argument type, writable or not."""
+    x = np.ascontiguousarray(x, dtype=float)
+    if x.flags.writeable:
+        x = x.copy()
+        x.setflags(write=False)
+    return x

@@ -51,6 +51,7 @@ from rockarch.mdof.kinematics import (
     predict,
     record,
     rest_under_gravity,
+    summary_options,
     tally,
     triple,
 )
@@ -392,8 +393,9 @@ def run_batch(model, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
     status, t_col, mx, nimp, nopen, fails = batch_arrays(m)
     for i in nb.prange(m):
         dt, dq, ds = no_history()
+        every = summary_options()[0]
         st, tc, mxa, ni, no, _, _, nf = run(model, scales[i], tk, ak, amps[i], hs[i], t_end,
-                                            t_motion, gtol_rel, 0, dt, dq, ds, dt)
+                                            t_motion, gtol_rel, every, dt, dq, ds, dt)
         status[i] = st
         t_col[i] = tc
         mx[i] = mxa

@@ -315,8 +315,9 @@ def run_batch(m, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
     nslide = np.zeros(k, dtype=np.int64)
     for i in nb.prange(k):
         dt, dq, ds = kin.no_history()
-        res = run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, 0, dt, dq,
-                  ds, dt, False)
+        every, through, skip = kin.summary_options()
+        res = run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, every, dt,
+                  dq, ds, dt, through, skip)
         status[i] = res[0]
         t_col[i] = res[1]
         mx[i] = res[2]

@@ -216,6 +216,17 @@ def no_history():
 
 
 @nb.njit(cache=True)
+def summary_options():
+    """(record_every, through_collapse, skip_rest) of a summary-only run of a batch.
+
+    Returned by a function, not written as constants at the call, so that numba types them
+    int64, bool, bool as :func:`rockarch.mdof.simulate` passes them: the run is compiled once
+    for both (a constant argument would compile a second, literal-typed copy of it).
+    """
+    return np.int64(0), np.bool_(False), np.bool_(True)
+
+
+@nb.njit(cache=True)
 def at_rest(cx0, cy0):
     """Positions and velocities (x, y, φ, vx, vy, ω) of blocks at rest with their centres
     at (cx0, cy0)."""

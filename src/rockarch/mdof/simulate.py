@@ -18,6 +18,7 @@ import numpy as np
 from rockarch.core import limits
 from rockarch.core.constants import GAP_TOL, T_FREE
 from rockarch.core.constants import MDOF_H_FACTOR as H_FACTOR
+from rockarch.core.jit_cache import kernel_array
 from rockarch.core.response import Batch, Response, run_batch
 from rockarch.core.validate import in_range
 from rockarch.mdof import chain_stepper as _k
@@ -134,9 +135,8 @@ def checks_step_by_default(assembly: Assembly) -> bool:
 
 def _motion_arrays(motion: GroundMotion | None):
     if motion is None:
-        return np.zeros(2), np.array([0.0, 1.0]), "free", 0.0
-    return (np.ascontiguousarray(motion.t, dtype=float),
-            np.ascontiguousarray(motion.a, dtype=float), motion.name, float(motion.duration))
+        return kernel_array(np.zeros(2)), kernel_array([0.0, 1.0]), "free", 0.0
+    return kernel_array(motion.t), kernel_array(motion.a), motion.name, float(motion.duration)
 
 
 def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: int
@@ -248,7 +248,7 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
     ap = assembly.ap_min if ap_min is None else float(ap_min)
     pr = assembly.p_ref if p_ref is None else float(p_ref)
     unit = motion.normalized()
-    tk, ak = np.ascontiguousarray(unit.t), np.ascontiguousarray(unit.a)
+    tk, ak = kernel_array(unit.t), kernel_array(unit.a)
     chain = uses_chain_stepper(assembly)
     model = chain_model(assembly) if chain else graph_model(assembly)
 

@@ -19,6 +19,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from rockarch.core.constants import G
+from rockarch.core.jit_cache import kernel_array
 from rockarch.core.validate import finite_array, in_range, positive
 from rockarch.motion.signals import GroundMotion
 
@@ -142,7 +143,7 @@ def uniform_samples(motion: GroundMotion) -> tuple[float, np.ndarray]:
     t, a, h = _steps(motion)
     dt = (t[-1] - t[0]) / (t.size - 1)
     if np.all(np.abs(h - dt) <= 1e-6 * dt):
-        return float(dt), np.asarray(a, dtype=float)
+        return float(dt), kernel_array(a)
     pos = h[h > 0.0]
     # at least MIN_SAMPLES over the motion: a pulse of few knots (a square pulse has 4)
     # keeps its shape, a jump is spread over a small fraction of it
@@ -150,7 +151,7 @@ def uniform_samples(motion: GroundMotion) -> tuple[float, np.ndarray]:
                (t[-1] - t[0]) / MAX_SAMPLES)
     n = int(math.ceil((t[-1] - t[0]) / step)) + 1
     grid = t[0] + np.arange(n) * ((t[-1] - t[0]) / (n - 1))
-    return float(grid[1] - grid[0]), motion(grid)
+    return float(grid[1] - grid[0]), kernel_array(motion(grid))
 
 
 def mean_period(motion: GroundMotion, band: tuple[float, float] = TM_BAND) -> float:

@@ -42,6 +42,7 @@ import numba as nb
 import numpy as np
 
 from rockarch.core import limits
+from rockarch.core.jit_cache import kernel_array
 
 MODEL_BLOCK = 0
 MODEL_TABLE = 1
@@ -54,9 +55,9 @@ def motion_arrays(motion, g: float, free_name: str) -> tuple:
     """(knot times, a_g/g at the knots, name, duration) of a motion for :func:`run`;
     ``motion=None``: no ground motion (free motion named ``free_name``)."""
     if motion is None:
-        return np.zeros(2), np.zeros(2), free_name, 0.0
-    return (np.ascontiguousarray(motion.t, dtype=float),
-            np.ascontiguousarray(motion.a, dtype=float) / g, motion.name, motion.duration)
+        return kernel_array(np.zeros(2)), kernel_array(np.zeros(2)), free_name, 0.0
+    return (kernel_array(motion.t), kernel_array(np.asarray(motion.a, dtype=float) / g),
+            motion.name, motion.duration)
 
 
 @nb.njit(cache=True)
@@ -371,6 +372,14 @@ def run_recorded(tk, ak, scale, model, c, p, prm, tab, amin, level, e, t_free, h
         cap = min(cap * 4, limit)
 
 
+@nb.njit(cache=True)
+def _summary_options():
+    """(record, max_steps) of a summary-only run of a batch, returned by a function so that
+    numba types them bool, int64 as :func:`run_recorded` passes them: :func:`run` is
+    compiled once for both (constants would compile a second, literal-typed copy)."""
+    return np.bool_(False), np.int64(_NO_LIMIT)
+
+
 @nb.njit(cache=True, parallel=True)
 def run_batch(tk, ak, scales, model, cs, ps, prm, tab, amin, level, e, t_free, h_factor,
               eps_rest):
@@ -384,10 +393,11 @@ def run_batch(tk, ak, scales, model, cs, ps, prm, tab, amin, level, e, t_free, h
     mx = np.zeros(m)
     nimp = np.zeros(m, dtype=np.int64)
     dummy = np.zeros(1)
+    record, limit = _summary_options()
     for i in nb.prange(m):
         st, _, ni, tov, mxa, _, _ = run(tk, ak, scales[i], model, cs[i], ps[i], prm, tab,
                                         amin, level, e, t_free, h_factor, eps_rest, 0.0, 0.0,
-                                        False, _NO_LIMIT, dummy, dummy, dummy, dummy)
+                                        record, limit, dummy, dummy, dummy, dummy)
         status[i] = st
         t_ov[i] = tov
         mx[i] = mxa
