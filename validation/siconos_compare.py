@@ -1,6 +1,7 @@
 """Time histories of rockarch's MDOF engine against Siconos (``make validate``).
 
     .venv/bin/python validation/siconos_compare.py [--out DIR]
+    .venv/bin/python validation/siconos_compare.py --convergence   (the default step)
 
 For each case: rockarch simulates the assembly; the same blocks, joints, friction, ground
 acceleration and time step go as JSON to ``validation/siconos_oracle.py`` run by
@@ -70,36 +71,65 @@ def case_json(a, m, h: float, t_end: float) -> dict:
             "a_ground": m.a.tolist()}
 
 
+def siconos(a, m, h: float, t_end: float, work: Path) -> dict:
+    """Siconos' history of the case at step ``h`` until ``t_end`` (t, q)."""
+    (work / "case.json").write_text(json.dumps(case_json(a, m, h, t_end)))
+    subprocess.run([SYSTEM_PYTHON, str(ORACLE), str(work / "case.json"),
+                    str(work / "out.npz")], check=True)
+    return dict(np.load(work / "out.npz"))
+
+
+def differences(res, ref: dict) -> tuple[float, float, np.ndarray, np.ndarray]:
+    """Largest differences of rockarch's history ``res`` from ``ref`` on ref's time grid
+    up to rockarch's last time, relative to the largest displacement / rotation reached:
+    (x-y, theta, displacements, rotations)."""
+    keep = ref["t"] <= res.t[-1] + 1e-12
+    t, rq = ref["t"][keep], ref["q"][keep]
+    q = np.stack([np.stack([np.interp(t, res.t, res.q[:, i, d]) for d in range(3)], axis=1)
+                  for i in range(res.q.shape[1])], axis=1)  # (nt, nb, 3)
+    q0 = q[0]
+    disp = np.hypot(q[..., 0] - q0[:, 0], q[..., 1] - q0[:, 1])
+    ddisp = np.hypot(q[..., 0] - rq[..., 0], q[..., 1] - rq[..., 1])
+    drot = np.abs(q[..., 2] - rq[..., 2])
+    return (float(ddisp.max() / max(disp.max(), 1e-12)),
+            float(drot.max() / max(np.abs(q[..., 2]).max(), 1e-12)), disp, q[..., 2])
+
+
 def compare(name, a, m, work: Path, *, tol: float = TOL, h_factor: float = MDOF_H_FACTOR
             ) -> tuple[bool, str]:
     res = mdof.simulate(a, m, t_free=2.0, h_factor=h_factor)
-    t_end = float(res.t[-1])
-    case = case_json(a, m, res.h, t_end)
-    (work / "case.json").write_text(json.dumps(case))
-    subprocess.run([SYSTEM_PYTHON, str(ORACLE), str(work / "case.json"),
-                    str(work / "out.npz")], check=True)
-    ref = np.load(work / "out.npz")
-    t = ref["t"]
-    q = np.stack([np.stack([np.interp(t, res.t, res.q[:, i, d]) for d in range(3)], axis=1)
-                  for i in range(a.n_blocks)], axis=1)  # (nt, nb, 3)
-    q0 = q[0]
-    disp = np.hypot(q[..., 0] - q0[:, 0], q[..., 1] - q0[:, 1])
-    ddisp = np.hypot(q[..., 0] - ref["q"][..., 0], q[..., 1] - ref["q"][..., 1])
-    drot = np.abs(q[..., 2] - ref["q"][..., 2])
-    ex = float(ddisp.max() / max(disp.max(), 1e-12))
-    er = float(drot.max() / max(np.abs(q[..., 2]).max(), 1e-12))
+    ref = siconos(a, m, res.h, float(res.t[-1]), work)
+    ex, er, disp, rot = differences(res, ref)
     ok = ex <= tol and er <= tol
-    line = (f"{'PASS' if ok else 'FAIL'} {name}: {len(t)} steps h={res.h:.3g} s, "
+    line = (f"{'PASS' if ok else 'FAIL'} {name}: {ref['t'].size} steps h={res.h:.3g} s, "
             f"max displacement {disp.max():.4g} m, max rotation "
-            f"{np.abs(q[..., 2]).max():.4g} rad; difference {100 * ex:.2f} % (x, y), "
+            f"{np.abs(rot).max():.4g} rad; difference {100 * ex:.2f} % (x, y), "
             f"{100 * er:.2f} % (theta); rockarch overturned={res.overturned}, "
             f"max_slip={res.max_slip:.4g} m")
     return ok, line
 
 
+def convergence(name, a, m, work: Path, fine: int = 8) -> None:
+    """rockarch at h, h/2, h/4 and h/8 (h: the default step) against Siconos at h/``fine``
+    (the converged reference): prints one line per step."""
+    res = mdof.simulate(a, m, t_free=2.0, h_factor=MDOF_H_FACTOR / fine)
+    ref = siconos(a, m, res.h, float(res.t[-1]), work)
+    print(f"{name}: Siconos at h/{fine} ({ref['t'].size} steps) as the reference", flush=True)
+    for div in (1, 2, 4, 8):
+        r = mdof.simulate(a, m, t_free=2.0, h_factor=MDOF_H_FACTOR / div)
+        ex, er, _, _ = differences(r, ref)
+        print(f"  rockarch at h/{div} (h = {r.h:.3g} s): difference {100 * ex:.2f} % (x, y), "
+              f"{100 * er:.2f} % (theta); overturned={r.overturned} at t = "
+              f"{r.t_overturn if r.t_overturn is None else round(r.t_overturn, 3)} s",
+              flush=True)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", type=Path, default=None, help="keep the case files here")
+    ap.add_argument("--convergence", action="store_true",
+                    help="instead: rockarch at h … h/8 against Siconos at h/8, on the arch "
+                    "on piers without sliding (about 10 min)")
     args = ap.parse_args(argv)
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import siconos.kernel"],
                            capture_output=True)
@@ -109,6 +139,10 @@ def main(argv=None) -> int:
         return 0
     work = args.out or Path(tempfile.mkdtemp(prefix="rockarch-validate-"))
     work.mkdir(parents=True, exist_ok=True)
+    if args.convergence:
+        name, a, m, _ = list(cases())[2]
+        convergence(name.replace(", h/4", ""), a, m, work)
+        return 0
     ok = True
     for name, a, m, hf in cases():
         good, line = compare(name, a, m, work, h_factor=hf)
