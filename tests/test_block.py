@@ -198,7 +198,8 @@ def test_history_buffer_growth_gives_the_same_history():
     b = RigidBlock(2.0, 0.15)
     rec = el_centro()
     m = rec.scaled(1.2 * b.ap_min / rec.pga)
-    args = (np.ascontiguousarray(m.t), np.ascontiguousarray(m.a) / b.g, 1.0,
+    tk, ak, _, _ = k.motion_arrays(m, b.g, "")  # as simulate passes them (read-only)
+    args = (tk, ak, 1.0,
             *b.kernel_args()[:1], b.p**2, b.p, *b.kernel_args()[1:], 10.0, 0.05, 1e-6,
             0.0, 0.0)
     small = k.run_recorded(*args, 8)
