@@ -34,8 +34,8 @@ def test_editing_a_callee_module_changes_the_cache_folder(tmp_path):
 def test_each_run_kernel_is_compiled_once():
     """A single run and a batch of runs use one compiled copy of each stepper: the motion
     always arrives as a read-only array (``kernel_array``) and the batches pass their
-    options typed as the single runs do. A second signature would compile the general
-    stepper again (about 50 s on one core)."""
+    options typed as the single runs do (MDOF batches call the very kernel from threads).
+    A second signature would compile the general stepper again (about 55 s on one core)."""
     from rockarch.mdof import chain_stepper, graph_run
     from rockarch.rocking import kernels
     from tests import warm_kernels

@@ -38,20 +38,18 @@ import math
 import numba as nb
 import numpy as np
 
+from rockarch.core.response import thread_map
 from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp, masked_band
 from rockarch.mdof.kinematics import (
     advance,
     at_rest,
-    batch_arrays,
     cap_projection_energy,
     energy,
     kinetic,
     moves_away,
-    no_history,
     predict,
     record,
     rest_under_gravity,
-    summary_options,
     tally,
     triple,
 )
@@ -249,7 +247,7 @@ def _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb,
     _apply(nbod, n, jl, jr, mu, im, ii, x, y, ph)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, out_q,
         out_state, out_e):
     """Simulate one assembly (``model``: a :class:`rockarch.mdof.kernel_data.ChainModel`),
@@ -386,20 +384,15 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     return status, t_col, mx, impacts, open_max, n_rec, step, fails
 
 
-@nb.njit(cache=True, parallel=True)
 def run_batch(model, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
-    """Many (scale, amplitude, step) triples in parallel; summaries only."""
-    m = scales.shape[0]
-    status, t_col, mx, nimp, nopen, fails = batch_arrays(m)
-    for i in nb.prange(m):
-        dt, dq, ds = no_history()
-        every = summary_options()[0]
-        st, tc, mxa, ni, no, _, _, nf = run(model, scales[i], tk, ak, amps[i], hs[i], t_end,
-                                            t_motion, gtol_rel, every, dt, dq, ds, dt)
-        status[i] = st
-        t_col[i] = tc
-        mx[i] = mxa
-        nimp[i] = ni
-        nopen[i] = no
-        fails[i] = nf
-    return status, t_col, mx, nimp, nopen, fails
+    """Many (scale, amplitude, step) triples side by side on numba's threads
+    (:func:`rockarch.core.response.thread_map`); summaries only: (status, t_collapse,
+    max ratio, impacts, most open joints, failed solves) arrays."""
+    def one(i):
+        return run(model, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, 0,
+                   np.zeros(0), np.zeros((0, 1, 3)), np.zeros((0, 1), dtype=np.int8),
+                   np.zeros(0))
+
+    res = thread_map(one, scales.shape[0])
+    cols = ((0, np.int8), (1, float), (2, float), (3, np.int64), (4, np.int64), (7, np.int64))
+    return tuple(np.array([r[c] for r in res], dtype=t) for c, t in cols)

@@ -13,6 +13,7 @@ import math
 import numba as nb
 import numpy as np
 
+from rockarch.core.response import thread_map
 from rockarch.mdof import kinematics as kin
 from rockarch.mdof.chain_solver import EPS_REG
 from rockarch.mdof.chain_stepper import CHECK_EVERY, CHECK_FROM
@@ -125,7 +126,7 @@ def _fallen(m, gap):
     return False
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, out_q,
         out_state, out_e, through, skip_rest=True):
     """Simulate one assembly (``m``: a :class:`rockarch.mdof.kernel_data.GraphModel`) scaled
@@ -306,24 +307,17 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             points_max, skipped)
 
 
-@nb.njit(cache=True, parallel=True)
 def run_batch(m, scales, tk, ak, amps, hs, t_end, t_motion, gtol_rel):
-    """Many (scale, amplitude, step) triples in parallel; summaries only."""
-    k = scales.shape[0]
-    status, t_col, mx, nimp, nopen, fails = kin.batch_arrays(k)
-    slip = np.zeros(k)
-    nslide = np.zeros(k, dtype=np.int64)
-    for i in nb.prange(k):
-        dt, dq, ds = kin.no_history()
-        every, through, skip = kin.summary_options()
-        res = run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, every, dt,
-                  dq, ds, dt, through, skip)
-        status[i] = res[0]
-        t_col[i] = res[1]
-        mx[i] = res[2]
-        nimp[i] = res[3]
-        nopen[i] = res[4]
-        fails[i] = res[7]
-        slip[i] = res[8]
-        nslide[i] = res[9]
-    return status, t_col, mx, nimp, nopen, fails, slip, nslide
+    """Many (scale, amplitude, step) triples side by side on numba's threads
+    (:func:`rockarch.core.response.thread_map`); summaries only: (status, t_collapse,
+    max ratio, impacts, most open joints, failed steps, largest slip, most sliding joints)
+    arrays."""
+    def one(i):
+        return run(m, scales[i], tk, ak, amps[i], hs[i], t_end, t_motion, gtol_rel, 0,
+                   np.zeros(0), np.zeros((0, 1, 3)), np.zeros((0, 1), dtype=np.int8),
+                   np.zeros(0), False, True)
+
+    res = thread_map(one, scales.shape[0])
+    cols = ((0, np.int8), (1, float), (2, float), (3, np.int64), (4, np.int64), (7, np.int64),
+            (8, float), (9, np.int64))
+    return tuple(np.array([r[c] for r in res], dtype=t) for c, t in cols)

@@ -201,32 +201,6 @@ def rest_under_gravity(tvx, tvy, tom, h, g):
 
 
 @nb.njit(cache=True)
-def batch_arrays(k):
-    """The per-run summaries of a batch of k runs: status, t_collapse, peak rotation ratio,
-    impacts, most open joints, failed contact solves."""
-    return (np.zeros(k, dtype=np.int8), np.full(k, np.nan), np.zeros(k),
-            np.zeros(k, dtype=np.int64), np.zeros(k, dtype=np.int64),
-            np.zeros(k, dtype=np.int64))
-
-
-@nb.njit(cache=True)
-def no_history():
-    """Empty history buffers (times, positions, joint states) for a run that keeps none."""
-    return np.zeros(0), np.zeros((0, 1, 3)), np.zeros((0, 1), dtype=np.int8)
-
-
-@nb.njit(cache=True)
-def summary_options():
-    """(record_every, through_collapse, skip_rest) of a summary-only run of a batch.
-
-    Returned by a function, not written as constants at the call, so that numba types them
-    int64, bool, bool as :func:`rockarch.mdof.simulate` passes them: the run is compiled once
-    for both (a constant argument would compile a second, literal-typed copy of it).
-    """
-    return np.int64(0), np.bool_(False), np.bool_(True)
-
-
-@nb.njit(cache=True)
 def at_rest(cx0, cy0):
     """Positions and velocities (x, y, φ, vx, vy, ω) of blocks at rest with their centres
     at (cx0, cy0)."""

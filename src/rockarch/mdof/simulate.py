@@ -238,7 +238,7 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
                    ap_min: float | None = None, p_ref: float | None = None,
                    t_free: float = T_FREE, h_factor: float = H_FACTOR,
                    gap_tol: float = GAP_TOL) -> Batch:
-    """Run the assembly's shape at many (p, ratio) pairs in parallel (numba threads).
+    """Run the assembly's shape at many (p, ratio) pairs in parallel (as many threads as numba has).
 
     The motion's shape is normalised to unit peak and scaled to ratio·ap_min; the size is
     set so that the reference frequency parameter equals p. ``ap_min``/``p_ref`` override
