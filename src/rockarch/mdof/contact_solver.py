@@ -550,14 +550,12 @@ def semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol
             st[r] = 2
     tol_sol = 1e-3 * tol_u
     sw.state[5] += 1
-    for it in range(max_it + 1):  # max_it solves, each checked by the next classification
+    for it in range(max_it):
         sw.state[6] += 1
         changed = _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l,
                                 it if key == 0.0 else SSN_FREEZE)
         if it > 0 and not changed:
             return it
-        if it == max_it:
-            break
         if not _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, sw.ie, sw,
                           lref, tol_sol, key):
             return -1 - it
