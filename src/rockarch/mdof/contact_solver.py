@@ -20,10 +20,10 @@ banded in a narrow body order whatever the width of the contact graph (a 210-blo
 unknowns, half-bandwidth 35, where the contact-space W has 1740 rows and is singular: the
 wall is hyperstatic). H is not symmetric where rows slide (non-associative friction): one
 banded LU per iteration, kept from step to step while the states do not change (refined
-against the moving Jacobian). Where hundreds of joints open and close at once the plain
-method need not settle; it is then globalised by the proximal point method (Eq. (9.9),
-:func:`solve`). Every step ends with the contact law met within (tol_u, tol_l) or counts as
-failed.
+against the moving Jacobian; a band of half-bandwidth ≤ ``REFINE_KD`` is factorised anew).
+Where hundreds of joints open and close at once the plain method need not settle; it is
+then globalised by the proximal point method (Eq. (9.9), :func:`solve`). Every step ends
+with the contact law met within (tol_u, tol_l) or counts as failed.
 """
 
 from __future__ import annotations
