@@ -73,3 +73,34 @@ def test_an_intact_wall_makes_no_new_contact():
     a = bd.wall(3, 3, 0.4, 0.2, mu=0.6)
     r = mdof.simulate(a, motion.pulse("sine", period=0.5).scaled(0.8 * a.ap_min), t_free=1.0)
     assert r.lcp_failures == 0 and r.new_contacts_max == 0
+
+
+def _visvalingam(pts: np.ndarray, keep: int) -> np.ndarray:
+    """Visvalingam's rule as written: drop the first vertex of least triangle area, again
+    and again (O(n²) numpy passes)."""
+    pts = [tuple(p) for p in pts]
+    while len(pts) > keep:
+        a = np.array(pts)
+        prv, nxt = np.roll(a, 1, axis=0), np.roll(a, -1, axis=0)
+        area = np.abs((a[:, 0] - prv[:, 0]) * (nxt[:, 1] - prv[:, 1])
+                      - (nxt[:, 0] - prv[:, 0]) * (a[:, 1] - prv[:, 1]))
+        del pts[int(np.argmin(area))]
+    return np.array(pts)
+
+
+def test_outline_thinning_is_visvalingams_rule_vertex_for_vertex():
+    # the kernel's thinning against the rule written out, on a 20-voussoir arch's curved
+    # voussoirs (~100 hull vertices each), regular polygons (every area equal: ties are
+    # broken by order) and random hulls: the same vertices, bit for bit (same arithmetic)
+    from scipy.spatial import ConvexHull
+
+    from rockarch.arch import catenary
+    from rockarch.mdof.kernel_data import OUTLINE_VERTICES, collision_outline
+    rng = np.random.default_rng(0)
+    polys = list(mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20).polygons)
+    polys += [np.c_[np.cos(t), np.sin(t)] for t in
+              (np.linspace(0, 2 * np.pi, k, endpoint=False) for k in (13, 40, 101))]
+    polys += [rng.normal(size=(k, 2)) for k in (8, 30, 200)]
+    for p in polys:
+        hull = np.asarray(p, float)[ConvexHull(np.asarray(p, float)).vertices]
+        assert np.array_equal(collision_outline(p), _visvalingam(hull, OUTLINE_VERTICES))

@@ -36,6 +36,45 @@ def world(j, x, y, cs, sn, px, py):
 
 
 @nb.njit(cache=True)
+def thin_outline(pts, keep):
+    """Visvalingam's rule on a closed polygon ``pts`` (n, 2): drop the vertex whose triangle
+    with its two neighbours has the least area (the first in order among equal areas) until
+    ``keep`` are left; returns the mask of the vertices kept. O(n²), in the kernel: a
+    voussoir's hull has ~100 vertices, and the outlines are built for every simulation
+    (in Python, half the run time of a 20-voussoir arch)."""
+    n = pts.shape[0]
+    alive = np.ones(n, dtype=np.bool_)
+    prv = np.empty(n, dtype=np.int64)
+    nxt = np.empty(n, dtype=np.int64)
+    area = np.empty(n)
+    for i in range(n):
+        prv[i] = (i - 1) % n
+        nxt[i] = (i + 1) % n
+    for i in range(n):
+        area[i] = _triangle2(pts, prv[i], i, nxt[i])
+    for _ in range(n - keep):
+        best = -1
+        for i in range(n):
+            if alive[i] and (best < 0 or area[i] < area[best]):
+                best = i
+        alive[best] = False
+        p = prv[best]
+        q = nxt[best]
+        nxt[p] = q
+        prv[q] = p
+        area[p] = _triangle2(pts, prv[p], p, q)
+        area[q] = _triangle2(pts, p, q, nxt[q])
+    return alive
+
+
+@nb.njit(cache=True, inline="always")
+def _triangle2(pts, p, i, q):
+    """Twice the area of the triangle of vertices p, i, q."""
+    return abs((pts[i, 0] - pts[p, 0]) * (pts[q, 1] - pts[p, 1])
+               - (pts[q, 0] - pts[p, 0]) * (pts[i, 1] - pts[p, 1]))
+
+
+@nb.njit(cache=True)
 def local_normals(pptr, pv):
     """Outward unit normal of every edge (edge i: from vertex i to the next of its polygon)
     in its body's frame (a support's: the world's)."""

@@ -20,10 +20,10 @@ banded in a narrow body order whatever the width of the contact graph (a 210-blo
 unknowns, half-bandwidth 35, where the contact-space W has 1740 rows and is singular: the
 wall is hyperstatic). H is not symmetric where rows slide (non-associative friction): one
 banded LU per iteration, kept from step to step while the states do not change (refined
-against the moving Jacobian). Where hundreds of joints open and close at once the plain
-method need not settle; it is then globalised by the proximal point method (Eq. (9.9),
-:func:`solve`). Every step ends with the contact law met within (tol_u, tol_l) or counts as
-failed.
+against the moving Jacobian; a band of half-bandwidth ≤ ``REFINE_KD`` is factorised anew).
+Where hundreds of joints open and close at once the plain method need not settle; it is
+then globalised by the proximal point method (Eq. (9.9), :func:`solve`). Every step ends
+with the contact law met within (tol_u, tol_l) or counts as failed.
 """
 
 from __future__ import annotations
@@ -38,6 +38,11 @@ import numpy as np
 PIVOT_TOL = 1e-13
 #: Refinements of a solve on LU factors made for an earlier Jacobian.
 REFINE_MAX = 4
+#: Up to this half-bandwidth (unknowns; a chain's is 5) the LU factors are not carried into
+#: a new step: a new factorisation costs about one refinement, and the step's new Jacobian
+#: needs several (measured on the 20-voussoir chain: 0.8 of its 1.4 factorisations per step
+#: came after a refinement that did not contract). Within a step they are kept.
+REFINE_KD = 8
 #: Iterations of one semismooth solve (:func:`semismooth`) within a proximal step.
 SSN_MAX = 30
 #: After this many iterations a μ = ∞ row that sticks keeps sticking for the step (a joint
@@ -321,9 +326,10 @@ def band_lu(n, a, kd, row):
 
 @nb.njit(cache=True, inline="always")
 def sw_scale(a, j, kd):
-    """Largest magnitude in row j of the band (the pivot test's scale)."""
+    """Largest magnitude in row j of the band of half-bandwidth kd (the pivot test's
+    scale; the array may be wider, its entries beyond the band are stale)."""
     s = 0.0
-    for d in range(a.shape[1]):
+    for d in range(2 * kd + 1):
         s = max(s, abs(a[j, d]))
     return s
 
@@ -579,6 +585,8 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     at once (rises by ``PROX_UP`` after one that did not), until ρ·|Λ − Λ_k| ≤ tol_u: the
     proximal term is then below the tolerance and Λ solves the original problem to it.
     Returns the semismooth iterations (negative: failed)."""
+    if sw.state[1] <= REFINE_KD:
+        sw.state[0] = 0  # a narrow band: refactorised at the step's Jacobian (REFINE_KD)
     lamk = sw.lamk
     for r in range(n_rows):
         lamk[r] = lam[r]  # the warm start, kept for the proximal steps

@@ -15,6 +15,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.spatial import ConvexHull
 
 from rockarch.mdof.assembly import Assembly
+from rockarch.mdof.collision import thin_outline
 
 #: The fraction of a face a joint's contact end may pass the other face's end before the
 #: overlap's end moves to it (docs/theory.md §9; :mod:`rockarch.mdof.graph_stepper`).
@@ -160,16 +161,9 @@ def collision_outline(points: np.ndarray) -> np.ndarray:
     """The outline of a block for new contacts (:mod:`rockarch.mdof.collision`): its convex
     hull, counter-clockwise, thinned to ``OUTLINE_VERTICES`` by repeatedly dropping the
     vertex whose triangle with its neighbours has the least area (a concave intrados becomes
-    its chord; flat faces and corners stay)."""
+    its chord; flat faces and corners stay; :func:`rockarch.mdof.collision.thin_outline`)."""
     hull = np.asarray(points, float)[ConvexHull(np.asarray(points, float)).vertices]
-    pts = list(map(tuple, hull))
-    while len(pts) > OUTLINE_VERTICES:
-        a = np.array(pts)
-        prv, nxt = np.roll(a, 1, axis=0), np.roll(a, -1, axis=0)
-        area = np.abs((a[:, 0] - prv[:, 0]) * (nxt[:, 1] - prv[:, 1])
-                      - (nxt[:, 0] - prv[:, 0]) * (a[:, 1] - prv[:, 1]))
-        del pts[int(np.argmin(area))]
-    return np.array(pts)
+    return hull[thin_outline(np.ascontiguousarray(hull), OUTLINE_VERTICES)]
 
 
 def _outlines(assembly: Assembly):
