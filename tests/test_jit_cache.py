@@ -44,3 +44,26 @@ def test_each_run_kernel_is_compiled_once():
         group()
     for kernel in (graph_run.run, chain_stepper.run, kernels.run):
         assert len(kernel.signatures) == 1, kernel.signatures
+
+
+def test_first_compilation_is_announced_once(tmp_path, monkeypatch):
+    """The command line's notice: said for a kernel with no machine code here and no index
+    in the cache folder, not said once either exists, never said by the library alone."""
+    from types import SimpleNamespace
+
+    index = tmp_path / "kernel.nbi"
+    kernel = SimpleNamespace(signatures=[], _cache=SimpleNamespace(
+        _cache_file=SimpleNamespace(_index_path=str(index))))
+    lines = []
+    monkeypatch.setattr(_jit_cache, "compile_notice", None)
+    _jit_cache.announce_compile(kernel, "a kernel", 5)
+    assert lines == []
+    monkeypatch.setattr(_jit_cache, "compile_notice", lines.append)
+    _jit_cache.announce_compile(kernel, "a kernel", 5)
+    assert len(lines) == 1 and lines[0].startswith("note: compiling a kernel once")
+    index.write_text("")
+    _jit_cache.announce_compile(kernel, "a kernel", 5)
+    kernel.signatures.append(("float64",))
+    index.unlink()
+    _jit_cache.announce_compile(kernel, "a kernel", 5)
+    assert len(lines) == 1

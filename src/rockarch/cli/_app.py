@@ -7,12 +7,20 @@ import sys
 import typer
 from typer.core import TyperGroup
 
-from rockarch.core import __version__
+from rockarch.core import __version__, jit_cache
 from rockarch.core.console import one_line_warnings
 
 # the click that typer runs on (typer >= 0.24 vendors its own copy)
 _CLICK_ERROR = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
 _NO_ARGS = getattr(sys.modules[_CLICK_ERROR.__module__], "NoArgsIsHelpError", ())
+
+
+def _notice(line: str) -> None:
+    """A note on stderr (a closed or broken stderr: nothing to show it on)."""
+    try:
+        print(line, file=sys.stderr, flush=True)
+    except (OSError, ValueError, AttributeError):
+        pass
 
 
 class OneLineErrors(TyperGroup):
@@ -21,6 +29,7 @@ class OneLineErrors(TyperGroup):
 
     def main(self, *args, standalone_mode: bool = True, **kwargs):
         one_line_warnings()
+        jit_cache.compile_notice = _notice
         try:
             rv = super().main(*args, standalone_mode=False, **kwargs)
         except _NO_ARGS as exc:

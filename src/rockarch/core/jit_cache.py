@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import os
+from collections.abc import Callable
 from pathlib import Path
 
 import numba
@@ -77,3 +78,23 @@ def kernel_array(x) -> np.ndarray:
         x = x.copy()
         x.setflags(write=False)
     return x
+
+
+#: Called with one line of text before a slow kernel is compiled for the first time on this
+#: machine (None: silent, the library's default; the command line prints it on stderr).
+compile_notice: Callable[[str], None] | None = None
+
+
+def announce_compile(kernel, what: str, seconds: float) -> None:
+    """Pass :data:`compile_notice` a line saying that ``kernel`` (a numba dispatcher) is
+    about to be compiled, if it has no machine code in this process nor an index in the
+    cache folder: ``what`` takes about ``seconds`` of one core, once per version."""
+    if compile_notice is None or kernel.signatures:
+        return
+    try:
+        if os.path.exists(kernel._cache._cache_file._index_path):
+            return
+    except AttributeError:  # a numba without this cache layout: say nothing
+        return
+    compile_notice(f"note: compiling {what} once for this version of rockarch (about "
+                   f"{seconds:.0f} s of one core; cached in {jit_cache_dir().parent})")

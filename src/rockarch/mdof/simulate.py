@@ -18,7 +18,7 @@ import numpy as np
 from rockarch.core import limits
 from rockarch.core.constants import GAP_TOL, T_FREE
 from rockarch.core.constants import MDOF_H_FACTOR as H_FACTOR
-from rockarch.core.jit_cache import kernel_array
+from rockarch.core.jit_cache import announce_compile, kernel_array
 from rockarch.core.response import Batch, Response, run_batch
 from rockarch.core.validate import in_range
 from rockarch.mdof import chain_stepper as _k
@@ -192,6 +192,14 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
                                 "max_rotation_ratio": half.max_rotation_ratio})
 
 
+def _announce(chain: bool) -> None:
+    """The one-line notice of a first compilation of the stepper (command line only)."""
+    if chain:
+        announce_compile(_k.run, "the chain stepper", 10)
+    else:
+        announce_compile(_g.run, "the general contact stepper", 60)
+
+
 def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
               t_free: float, h_factor: float, gap_tol: float, record_every: int,
               through_collapse: bool, skip_rest: bool) -> MDOFResponse:
@@ -210,10 +218,12 @@ def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
     out_s, out_e = np.zeros((cap, nj), dtype=np.int8), np.zeros(cap)
     if uses_chain_stepper(assembly) and not through_collapse:
         model = chain_model(assembly)
+        _announce(True)
         out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
                      out_q, out_s, out_e) + (0.0, 0, 0, 0)
     else:
         model = graph_model(assembly)
+        _announce(False)
         out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
                      out_q, out_s, out_e, bool(through_collapse), bool(skip_rest))
     st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points, n_rest = out[:12]
@@ -260,6 +270,7 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
                   assembly.n_joints, 1)
         args = (model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
                 float(unit.duration + t_free), float(unit.duration), gap_tol)
+        _announce(chain)
         if chain:
             out = _k.run_batch(*args)
             return out + (np.zeros(scales.size), np.zeros(scales.size, dtype=np.int64))
