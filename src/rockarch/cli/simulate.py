@@ -76,8 +76,11 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
     if s["overturned"]:
         typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after {s['impacts']} impacts")
     else:
+        beyond = ("; rotated past the reference angle yet not collapsed: the collapse test "
+                  "decides (docs/mdof.md, Collapse criterion)"
+                  if s["max_rotation_ratio"] >= 1.0 else "")
         typer.echo(f"safe: max rotation / its overturning value = "
-                   f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts")
+                   f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts{beyond}")
     if s.get("step_sensitive"):
         typer.echo(_step_note(s["h_half"]))
     stride = getattr(resp, "stride", 1)
