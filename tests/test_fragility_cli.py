@@ -190,3 +190,21 @@ def test_im_all_reports_the_dispersion_of_every_im_on_one_ida(folder):
     text = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
                                str(folder), "--no-store", "--im", "all", "--bootstrap", "0"])
     assert "Sa(T = 3.14 s)" in text.stdout and "lowest beta:" in text.stdout
+
+
+def test_mdof_structure_of_real_size_needs_no_p(folder):
+    """A wall given in metres has its own p (as in `design --system mdof`); a block of alpha
+    alone and an arch of f/l, d/l have no size and still need --p."""
+    base = ["fragility", "--system", "mdof", "--records", str(folder), "--no-store",
+            "--ratio-steps", "2", "--ratio-max", "1.5", "--tol", "0.5", "--bootstrap", "0",
+            "--json"]
+    res = runner.invoke(app, [*base, "--column", "0.4,1.0", "--friction", "0.6"])
+    assert res.exit_code == 0, res.output
+    from rockarch import systems
+    own = systems.system("mdof", column=[(0.4, 1.0)], friction=0.6).p_ref
+    assert json.loads(res.stdout)["p"] == pytest.approx(own, rel=1e-12)  # the same structure
+    res = runner.invoke(app, [*base, "--shape", "catenary", "--rise-over-span", "0.3",
+                              "--thickness-over-span", "0.03", "--blocks", "8"])
+    assert res.exit_code == 2 and "--p" in res.stderr
+    res = runner.invoke(app, [*base[:2], "block", *base[3:], "--alpha", "0.1"])
+    assert res.exit_code == 2 and "--p" in res.stderr

@@ -53,7 +53,8 @@ def ida_sweep_options(opts: dict, n_records: int) -> dict:
 #: structure's p, the records and the scan (docs/theory.md §11.3).
 IDA: Group = (
     ("p", float, typer.Option(None, "--p", help="Frequency parameter of the structure "
-                              "[1/s].")),
+                              "[1/s] (default for mdof walls, columns, colonnades and "
+                              "assembly files: their own, at the size given).")),
     ("records", list[Path], typer.Option(None, "--records", help="Folder of .AT2 records or "
                                          "record files; several may follow one --records.")),
     ("more", list[Path], typer.Argument(None, hidden=True)),
@@ -76,11 +77,15 @@ def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
             ) -> tuple[fr.IDAResult, list]:
     """The IDA of the SYSTEM, IDA and SWEEP options of a command in ``im`` (and the
     motions): options checked before any record is read."""
-    if opts["p"] is None:
-        raise ValueError("give the structure's frequency parameter --p [1/s]")
     if not opts["records"]:
         raise ValueError("give the records: --records DIR (or files)")
     sysobj = system_of(opts)
+    if opts["p"] is None:
+        # blocks (of alpha alone) and arches (of f/l, d/l) have no size; walls, columns,
+        # colonnades and assembly files are given in metres and have their own p
+        if opts["system"].value != "mdof" or opts["shape"] is not None:
+            raise ValueError("give the structure's frequency parameter --p [1/s]")
+        opts = {**opts, "p": float(sysobj.p_ref)}
     if opts["ratio_steps"] < 2:
         raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
     if opts["ratio_max"] is not None and not opts["ratio_max"] > 1:
