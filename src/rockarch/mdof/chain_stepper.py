@@ -41,15 +41,20 @@ import numpy as np
 from rockarch.core.response import thread_map
 from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp, masked_band
 from rockarch.mdof.kinematics import (
+    IMPACT_HORIZON,
+    IMPACT_SPEED,
     advance,
     at_rest,
     cap_projection_energy,
     energy,
+    impact_ahead,
     kinetic,
     moves_away,
     predict,
     record,
     rest_under_gravity,
+    step_end,
+    step_start,
     tally,
     triple,
 )
@@ -319,18 +324,25 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
     t, step, i_prev = 0.0, 0, 0.0
     n_steps = int(math.ceil(t_end / h))
+    # a step in which a corner is about to strike runs as REFINE substeps (Eq. 6.5)
+    gprev = np.zeros((nj, 2))
+    ahead = False
+    nsub, sub, t_step, hc = 1, 0, 0.0, h
+    v_imp = IMPACT_SPEED * g * h
     while step < n_steps:
-        i_prev, agbar = predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck, amp)
+        nsub, t_step, hc = step_start(sub, ahead, t, t_step, nsub, h, hc, lam)
+        i_prev, agbar = predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak, ck,
+                                amp)
         for j in range(nbod):
-            vfx[j] = vx[j] - h * agbar
-            vfy[j] = vy[j] - h * g
+            vfx[j] = vx[j] - hc * agbar
+            vfy[j] = vy[j] - hc * g
             vfo[j] = om[j]
         its = _contact_step(nbod, nj, xm, ym, phm, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol,
-                            h, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree,
-                            inset, free, sol, vx, vy, om)
+                            hc, eps, tol_u, tol_l * hc / h, gap, jl, jr, wb, kb, lb, rhs, lam,
+                            ufree, inset, free, sol, vx, vy, om)
         if its < 0:
             fails += 1
-        advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
         any_keep = False
         for r in range(n):
             k = r // 3
@@ -351,11 +363,17 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb,
                      lb, rhs, mu, 100.0 * gtol)
             cap_projection_energy(mass, ii, vx, vy, om, y, v0, g)
-        t += h
-        step += 1
+        sub, t, step = step_end(sub, nsub, t_step, h, step)
         # joints, impacts
         impacts, open_max, mx, n_open, rho = tally(gmid, gtol, was_open, lam, ph, delta_ref,
                                                    impacts, open_max, mx)
+        ahead = impact_ahead(gmid, gprev, gtol, hc, IMPACT_HORIZON * h, v_imp)
+        if sub > 0:  # the rest of this step's substeps
+            if rho > 0.5 * math.pi:
+                status = 1
+                t_col = t
+                break
+            continue
         if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
             record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             out_e[n_rec] = energy(mass, ii, vx, vy, om, y, cy0, g)

@@ -182,12 +182,18 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     skipped = 0
     for i in range(ak.shape[0]):
         a_max = max(a_max, abs(amp * ak[i]))
+    # a step in which a corner is about to strike runs as REFINE substeps (Eq. 6.5)
+    gprev = np.zeros((nj, 2))
+    ahead = False
+    nsub, sub, t_step, hc = 1, 0, 0.0, h
+    v_imp = kin.IMPACT_SPEED * g * h
     while step < n_steps:
-        i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck,
-                                    amp)
+        nsub, t_step, hc = kin.step_start(sub, ahead, t, t_step, nsub, h, hc, ws.lam)
+        i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak,
+                                    ck, amp)
         for j in range(nbod):
-            vx[j] -= h * agbar
-            vy[j] -= h * g
+            vx[j] -= hc * agbar
+            vy[j] -= hc * g
         vnow = _vmax(vx, vy, om, rad)
         margin = -1.0
         if step >= next_search or vnow > 2.0 * v_search + g * h:
@@ -196,8 +202,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             margin = gtol + 2.0 * dt * (2.0 * vnow + dt * (g + a_max))
             next_search = step + DETECT_EVERY
             v_search = vnow
-        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, eps_n, eps, tol_u, tol_l,
-                           margin, ws)
+        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, hc, eps_n, eps, tol_u,
+                           tol_l * hc / h, margin, ws)
         if its < 0 or ws.cnt[1] > 0:  # not solved, or more new contacts than room
             fails += 1
             ws.cnt[1] = 0
@@ -208,7 +214,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         points_max = max(points_max, n_touch)
         n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
-        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
         any_keep = False
         for r in range(n):
             k = r // 3
@@ -232,11 +238,18 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 v0 += mass[j] * y[j]
             project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws, ws)
             kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
-        t += h
-        step += 1
+        sub, t, step = kin.step_end(sub, nsub, t_step, h, step)
         impacts, open_max, mx, n_open, rho = kin.tally(gmid, gtol, was_open, ws.lam, ph,
                                                    m.delta_ref, impacts, open_max, mx)
         impacts += _point_impacts(m, ws, was_closed)
+        ahead = kin.impact_ahead(gmid, gprev, gtol, hc, kin.IMPACT_HORIZON * h, v_imp)
+        if sub > 0:  # the rest of this step's substeps
+            if status == 0 and (rho > 0.5 * math.pi or (can_slide and _fallen(m, gmid))):
+                status = 1
+                t_col = t
+                if not through:
+                    break
+            continue
         if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
             kin.record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             out_e[n_rec] = kin.energy(mass, ws.ii, vx, vy, om, y, cy0, g)
@@ -300,6 +313,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         if not math.isnan(a_last):
             for r in range(3 * nj + 2 * ws.cnt[0]):
                 ws.lam[r] = lam0[r] + a_last * lam1[r]
+            hc = h
             next_search = step
             if t >= t_motion and n_open == 0:
                 break

@@ -12,6 +12,17 @@ import math
 import numba as nb
 import numpy as np
 
+#: Substeps of a step in which a corner is about to strike (docs/theory.md Eq. (6.5)):
+#: Moreau–Jean places an impact only to within its step, a first-order error that the
+#: many impacts of a multi-block collapse accumulate; these steps are divided by this.
+REFINE = 3
+#: A corner strikes if it closes faster than this fraction of g·h (slower closings, such
+#: as the head joints of a resting wall as the ground acceleration turns, transfer no
+#: momentum worth resolving) ...
+IMPACT_SPEED = 1.0
+#: ... within this many steps at its present closing speed.
+IMPACT_HORIZON = 2.0
+
 
 @nb.njit(cache=True)
 def advance(x, y, ph, vx, vy, om, dt, xo, yo, pho):
@@ -178,6 +189,48 @@ def ground_increment(t, h, i_prev, tk, ak, ck, amp):
     step [t, t + h] (amp · Δ∫a_g / h, docs/theory.md §6). Returns (integral, mean)."""
     i_new = cumint(t + h, tk, ak, ck)
     return i_new, amp * (i_new - i_prev) / h
+
+
+@nb.njit(cache=True)
+def impact_ahead(gmid, gprev, gtol, hc, reach, v_imp):
+    """True if an open corner is about to strike (docs/theory.md Eq. (6.5)): its gap at the
+    step's midpoint fell by more than ``v_imp``·hc since the last (sub)step of length
+    ``hc`` [s], and at that closing speed it closes within ``reach`` [s]. Updates
+    ``gprev`` (the gaps of the last (sub)step) to ``gmid``."""
+    ahead = False
+    for k in range(gmid.shape[0]):
+        for c in range(2):
+            gn = gmid[k, c]
+            closing = gprev[k, c] - gn
+            if gn > gtol and closing > v_imp * hc and gn - gtol <= closing / hc * reach:
+                ahead = True
+            gprev[k, c] = gn
+    return ahead
+
+
+@nb.njit(cache=True)
+def step_start(sub, ahead, t, t_step, nsub, h, hc_last, lam):
+    """Start of a (sub)step of the step h (Eq. 6.5): at a step's start (``sub`` 0) it is
+    divided into REFINE substeps if a corner is about to strike (``ahead``). The warm
+    start's impulses ``lam`` are scaled to the new length. Returns (nsub, t_step, hc)."""
+    if sub == 0:
+        nsub = REFINE if ahead else 1
+        t_step = t
+    hc = h / nsub
+    if hc != hc_last:
+        for r in range(lam.shape[0]):
+            lam[r] *= hc / hc_last
+    return nsub, t_step, hc
+
+
+@nb.njit(cache=True)
+def step_end(sub, nsub, t_step, h, step):
+    """End of a (sub)step: returns (sub, t, step), ``sub`` 0 and ``step`` + 1 when the
+    step h is complete."""
+    sub += 1
+    if sub == nsub:
+        return 0, t_step + h, step + 1
+    return sub, t_step + sub * (h / nsub), step
 
 
 @nb.njit(cache=True)
