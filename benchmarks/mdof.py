@@ -1,7 +1,7 @@
 """Benchmark: the MDOF model against its targets and a plain reference.
 
 Run:  .venv/bin/python benchmarks/mdof.py                 (≈ 5–8 min on 2 cores)
-      .venv/bin/python benchmarks/mdof.py friction graphs (only parts 5 and 6)
+      .venv/bin/python benchmarks/mdof.py friction graphs (only parts 5 and 6; "chain": 1)
 
 1. one simulation of a 20-voussoir catenary arch (l = 10 m, f = 3 m, d = 0.25 m) on the first
    5 s of El Centro 1940 (PGA = ratio·ap,min, ratio 1.0…2.0, no free time), with history:
@@ -129,16 +129,8 @@ def graphs(rec) -> None:
               f"{r.lcp_failures} |")
 
 
-def main() -> None:
-    rec = first_seconds(el_centro(), 5.0)
-    arch = catenary(10.0, 3.0, 0.25)
-    only = set(sys.argv[1:])
-    if only:
-        if "friction" in only:
-            friction(rec, arch)
-        if "graphs" in only:
-            graphs(rec)
-        return
+def chain(rec, arch) -> None:
+    """Part 1: the 20-voussoir chain, one simulation with history."""
     ratios = np.linspace(1.0, 2.0, 11)
     a20 = mdof.arch_assembly(arch, 20)
     mdof.simulate(a20, rec.scaled(0.5), t_free=0.0)  # JIT / cache load
@@ -148,6 +140,22 @@ def main() -> None:
           f"median {1e3 * np.median(t):.1f} ms, max {1e3 * t.max():.1f} ms "
           f"(target <= 50 ms median); {ov.sum()}/{ov.size} collapse; "
           f"{1e6 * np.sum(t) / np.sum(st):.1f} µs per step")
+
+
+def main() -> None:
+    rec = first_seconds(el_centro(), 5.0)
+    arch = catenary(10.0, 3.0, 0.25)
+    only = set(sys.argv[1:])
+    if only:
+        if "chain" in only:
+            chain(rec, arch)
+        if "friction" in only:
+            friction(rec, arch)
+        if "graphs" in only:
+            graphs(rec)
+        return
+    chain(rec, arch)
+    ratios = np.linspace(1.0, 2.0, 11)
 
     sysm = systems.MDOFSystem(mdof.arch_assembly(catenary(1.0, 0.3, 0.025), 20))
     p = np.linspace(0.5, 10.0, 50)

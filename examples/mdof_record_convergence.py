@@ -10,14 +10,15 @@ own ap,min and p, as `rockarch oas --system mdof`) at h·p = 0.005 (the default)
 2. The median of the MDOF fragility (IDA at the arch's own p, lognormal fit, PGA) over the
    10 synthetic records of `rockarch records synth DIR --n 10 --seed 0`: its change with h.
 
-``--friction`` also runs part 1 with μ = 0.5 at every joint (the general stepper) on a
+``--records 40 --skip-oas``: part 2 alone on 40 records (≈ 15 min). ``--friction`` also
+runs part 1 with μ = 0.5 at every joint (the general stepper) on a
 smaller grid (6 × 6 cells, El Centro 180 only; ≈ 2 min more). ``--h-factors`` sets the
 three steps (``--h-factors 0.0025,0.00125,0.000625``: the next halvings, ≈ 25 min).
 
-Run:  .venv/bin/python examples/mdof_record_convergence.py      (≈ 15 min on 2 cores)
+Run:  .venv/bin/python examples/mdof_record_convergence.py      (≈ 7 min on 2 cores)
 
-(Measured: 880 s wall, 514 CPU s, on 2 cores shared with other jobs: part 1 446 s, part 2
-433 s; the runs at h/4 take half of it.)
+(Measured 2026-11-29 with ``--friction``: 408 s on 2 cores shared with other jobs; the
+runs at h/4 take about half of it.)
 """
 
 from __future__ import annotations
@@ -70,9 +71,9 @@ def oas_table(hs: tuple[float, ...], p, ratio, components, mu: float | None) -> 
               f"{pct(m[0], m[2])} | |")
 
 
-def fragility_table(hs: tuple[float, ...]) -> None:
+def fragility_table(hs: tuple[float, ...], n_records: int = 10) -> None:
     """Part 2: the fragility median (and β, the collapse points) at the three steps."""
-    motions = synthetic_motions(10, seed=0)
+    motions = synthetic_motions(n_records, seed=0)
     print(f"\nFragility at the arch's own p, {len(motions)} synthetic records (seed 0), "
           f"IDA over ap/ap,min = 1…5 ({IDA_RATIO.size} values) bisected to {IDA_TOL:g}")
     print("| h·p | median [m/s²] | change vs h | β | censored | records whose collapse "
@@ -102,14 +103,18 @@ def main() -> None:
     ap.add_argument("--friction", action="store_true",
                     help="also the OAS with friction 0.5 (6 × 6 cells, El Centro 180)")
     ap.add_argument("--skip-fragility", action="store_true")
+    ap.add_argument("--skip-oas", action="store_true")
+    ap.add_argument("--records", type=int, default=10,
+                    help="synthetic records of part 2 (seed 0; the first 10 are the default's)")
     args = ap.parse_args()
     hs = tuple(float(v) for v in args.h_factors.split(","))
     if len(hs) != 3:
         raise SystemExit("error: --h-factors needs three values")
     t0 = time.perf_counter()
-    oas_table(hs, P, RATIO, (180, 270), None)
+    if not args.skip_oas:
+        oas_table(hs, P, RATIO, (180, 270), None)
     if not args.skip_fragility:
-        fragility_table(hs)
+        fragility_table(hs, args.records)
     if args.friction:
         oas_table(hs, np.linspace(0.5, 10.0, 6), np.linspace(1.0, 4.0, 6), (180,), 0.5)
     print(f"\ntotal {time.perf_counter() - t0:.0f} s")
