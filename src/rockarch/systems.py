@@ -424,6 +424,8 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     _check_types(given)
     g = in_range("g", g, 0.0, G_MAX, lo_open=True)
     t_free = in_range("t_free", t_free, 0.0, math.inf, hi_open=True)
+    if h_factor is not None:
+        h_factor = in_range("h_factor (time step · p)", h_factor, 1e-4, 0.05)
     sdof_h = SDOF_H_FACTOR if h_factor is None else h_factor
     mdof_only = [k for k in _MDOF_ONLY if k in given]
     if kind != "mdof" and mdof_only:

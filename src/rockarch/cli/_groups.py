@@ -82,6 +82,13 @@ MDOF: Group = (
     ("thickness", float, THICK_OPT), ("blocks", int, MDOF_BLOCKS_OPT),
 ) + STRUCTURE
 
+#: The time step of every simulation of a sweep (``ra.system``'s h_factor).
+STEP: Group = (
+    ("h_factor", float, typer.Option(None, help="Time step × p of every simulation "
+                                     "(default: 0.005 for mdof, docs/mdof.md; 0.05 for the "
+                                     "RK4 of the other kinds; range 1e-4 … 0.05).")),
+)
+
 #: Any system kind of ``ra.system`` (docs/architecture.md) by the options of ``rockarch oas``.
 SYSTEM: Group = (
     ("system", System, typer.Option("block", help="Structure: a rigid block, the four-hinge "
@@ -102,7 +109,7 @@ SYSTEM: Group = (
     ("ap_min", float, typer.Option(None, "--ap-min", help="sdof: limit acceleration "
                                    "[m/s²].")),
     ("restitution", float, REST_OPT), ("t_free", float, TFREE_OPT), ("g", float, G_OPT),
-)
+) + STEP
 
 #: The ground motion: a pulse (--signal/--period/--cycles) or a record (--record/--units).
 MOTION: Group = (
@@ -173,7 +180,7 @@ def system_of(opts: dict):
                        blocks=opts["blocks"], mass_ratio=opts["mass_ratio"],
                        delta=opts["delta"], ap_min=opts["ap_min"], g=opts["g"],
                        restitution=opts["restitution"], t_free=opts["t_free"],
-                       **mdof_structure(opts))
+                       h_factor=opts["h_factor"], **mdof_structure(opts))
 
 
 def sweep_options(opts: dict) -> dict:

@@ -26,7 +26,16 @@ from rockarch.cli._common import (
     read_records,
     value,
 )
-from rockarch.cli._groups import MDOF, STRUCTURE, SWEEP, SYSTEM, options, sweep_options, system_of
+from rockarch.cli._groups import (
+    MDOF,
+    STEP,
+    STRUCTURE,
+    SWEEP,
+    SYSTEM,
+    options,
+    sweep_options,
+    system_of,
+)
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import _print_table, ida_sweep_options
 from rockarch.cli.risk import RISK, check_years, hazard_of
@@ -112,7 +121,7 @@ def site_oas(
 @app.command(short_help="Largest safe PGA of an arch (paper Sect 9 method) or of any "
              "--system at a site.")
 @guarded
-@options(MDOF, before="system")
+@options(MDOF + STEP, before="system")
 @options(RISK, before="save_site")
 @options(SWEEP)
 def design(
@@ -361,7 +370,7 @@ def _print_risk(risk) -> None:
 
 #: design options of --system only (the arch design by the replacement catenary refuses them).
 _SYSTEM_ONLY = ("alpha", "p", "blocks", *(name for name, _, _ in STRUCTURE), "mass_ratio",
-                "delta", "ap_min", "ratio_max")
+                "delta", "ap_min", "ratio_max", "h_factor")
 #: design options of the arch design only (with their defaults: given when they differ).
 _ARCH_ONLY = ("thickness_rule", "replacement_axis", "replacement_mass", "save_site")
 
@@ -384,7 +393,8 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          span=opt["span"], rise=opt["rise"], thickness=opt["thickness"],
                          blocks=opt["blocks"], mass_ratio=opt["mass_ratio"],
                          delta=opt["delta"], ap_min=opt["ap_min"], g=opt["g"],
-                         t_free=opt["t_free"], **mdof_structure(opt))
+                         t_free=opt["t_free"], h_factor=opt["h_factor"],
+                         **mdof_structure(opt))
     site_hazard = _hazard(opt, bool(records))
     kw = {"curve": opt["curve"],
           "percentile": 50.0 if opt["percentile"] is None else opt["percentile"],
