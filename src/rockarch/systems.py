@@ -41,7 +41,7 @@ from rockarch.core.validate import (
     show,
 )
 from rockarch.mdof.assembly import Assembly
-from rockarch.mdof.simulate import checks_step_by_default
+from rockarch.mdof.simulate import check_h_factor, checks_step_by_default
 from rockarch.motion.signals import GroundMotion
 from rockarch.rocking import mechanism as mc
 from rockarch.rocking.block import RigidBlock
@@ -425,7 +425,7 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     g = in_range("g", g, 0.0, G_MAX, lo_open=True)
     t_free = in_range("t_free", t_free, 0.0, math.inf, hi_open=True)
     if h_factor is not None:
-        h_factor = in_range("h_factor (time step · p)", h_factor, 1e-4, 0.05)
+        h_factor = check_h_factor(h_factor)
     sdof_h = SDOF_H_FACTOR if h_factor is None else h_factor
     mdof_only = [k for k in _MDOF_ONLY if k in given]
     if kind != "mdof" and mdof_only:

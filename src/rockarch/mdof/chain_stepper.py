@@ -329,6 +329,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     ahead = False
     nsub, sub, t_step, hc = 1, 0, 0.0, h
     v_imp = IMPACT_SPEED * g * h
+    reach = IMPACT_HORIZON * h
     while step < n_steps:
         nsub, t_step, hc = step_start(sub, ahead, t, t_step, nsub, h, hc, lam)
         i_prev, agbar = predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak, ck,
@@ -367,14 +368,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
         # joints, impacts
         impacts, open_max, mx, n_open, rho = tally(gmid, gtol, was_open, lam, ph, delta_ref,
                                                    impacts, open_max, mx)
-        ahead = impact_ahead(gmid, gprev, gtol, hc, IMPACT_HORIZON * h, v_imp)
-        if sub > 0:  # the rest of this step's substeps
-            if rho > 0.5 * math.pi:
-                status = 1
-                t_col = t
-                break
-            continue
-        if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
+        ahead = impact_ahead(gmid, gprev, gtol, hc, reach, v_imp)
+        if sub == 0 and rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
             record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             out_e[n_rec] = energy(mass, ii, vx, vy, om, y, cy0, g)
             n_rec += 1
@@ -382,6 +377,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             status = 1
             t_col = t
             break
+        if sub > 0:  # the rest of this step's substeps
+            continue
         if rho > CHECK_FROM * delta_ref and step % CHECK_EVERY == 0:
             # frozen-configuration test: from rest at q under gravity alone
             rest_under_gravity(tvx, tvy, tom, h, g)

@@ -187,6 +187,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     ahead = False
     nsub, sub, t_step, hc = 1, 0, 0.0, h
     v_imp = kin.IMPACT_SPEED * g * h
+    reach = kin.IMPACT_HORIZON * h
     while step < n_steps:
         nsub, t_step, hc = kin.step_start(sub, ahead, t, t_step, nsub, h, hc, ws.lam)
         i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak,
@@ -242,15 +243,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         impacts, open_max, mx, n_open, rho = kin.tally(gmid, gtol, was_open, ws.lam, ph,
                                                    m.delta_ref, impacts, open_max, mx)
         impacts += _point_impacts(m, ws, was_closed)
-        ahead = kin.impact_ahead(gmid, gprev, gtol, hc, kin.IMPACT_HORIZON * h, v_imp)
-        if sub > 0:  # the rest of this step's substeps
-            if status == 0 and (rho > 0.5 * math.pi or (can_slide and _fallen(m, gmid))):
-                status = 1
-                t_col = t
-                if not through:
-                    break
-            continue
-        if rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
+        ahead = kin.impact_ahead(gmid, gprev, gtol, hc, reach, v_imp)
+        if sub == 0 and rec_every > 0 and step % rec_every == 0 and n_rec < out_t.shape[0]:
             kin.record(n_rec, t, x, y, ph, gmid, gtol, out_t, out_q, out_state)
             out_e[n_rec] = kin.energy(mass, ws.ii, vx, vy, om, y, cy0, g)
             n_rec += 1
@@ -259,6 +253,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             t_col = t
             if not through:
                 break
+        if sub > 0:  # the rest of this step's substeps
+            continue
         if status == 0 and rho > CHECK_FROM * m.delta_ref and step % CHECK_EVERY == 0:
             # frozen-configuration test: from rest at q under gravity alone
             kin.rest_under_gravity(tvx, tvy, tom, h, g)

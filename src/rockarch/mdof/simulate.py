@@ -43,9 +43,14 @@ STEP_CHECK_ROTATION = 0.1
 STEP_CHECK_MAX_BLOCKS = 20
 
 
+def check_h_factor(h_factor) -> float:
+    """The time step × p as a float in [1e-4, 0.05] (ValueError outside)."""
+    return in_range("h_factor (time step · p)", h_factor, 1e-4, 0.05)
+
+
 def check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
     in_range("t_free", t_free, 0.0, math.inf, hi_open=True)
-    in_range("h_factor (time step · p)", h_factor, 1e-4, 0.05)
+    check_h_factor(h_factor)
     in_range("gap_tol (fraction of the joint thickness)", gap_tol, 1e-10, 1e-3)
 
 
