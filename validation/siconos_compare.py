@@ -2,7 +2,7 @@
 
     .venv/bin/python validation/siconos_compare.py [--out DIR]
     .venv/bin/python validation/siconos_compare.py --convergence   (the default step)
-    .venv/bin/python validation/siconos_compare.py --free-rocking  (a known gap, not a pass)
+    .venv/bin/python validation/siconos_compare.py --free-rocking  (a convergence study, not a pass)
 
 For each case: rockarch simulates the assembly; the same blocks, joints, friction, ground
 acceleration and time step go as JSON to ``validation/siconos_oracle.py`` run by
@@ -172,7 +172,7 @@ def main(argv=None) -> int:
                     "on piers without sliding (about 10 min)")
     ap.add_argument("--free-rocking", action="store_true",
                     help="instead: a freely rocking block against Siconos and Housner's "
-                    "equation (a known gap, docs/validation.md; about 3 min)")
+                    "equation (a convergence study, docs/validation.md; about 3 min)")
     args = ap.parse_args(argv)
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import siconos.kernel"],
                            capture_output=True)

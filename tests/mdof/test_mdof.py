@@ -251,9 +251,9 @@ def test_no_friction_chain_history_is_safe_with_its_spread():
     # 20-voussoir arch, the first 5 s of El Centro at 1.5·ap_min, 1 s free (h·p = 0.005
     # fixed). The verdict and the number of steps are deterministic; the impacts, open
     # joints and largest rotation of such a history are chaotic: scaling the record by
-    # 1 + 1e-12 or 1 + 1e-9 and halving the step twice gave 161–251 impacts, 9–11 open
-    # joints and a largest rotation of 0.26–0.41 of delta (2026-11-25), so they are tested
-    # as bands around that spread. The bit-identical guard for refactors is
+    # 1 + 1e-9 and halving the step twice gave 235–389 impacts, 10–13 open joints and a
+    # largest rotation of 0.13–0.40 of delta (2026-11-29), so they are tested as bands
+    # around that spread. The bit-identical guard for refactors is
     # benchmarks/golden.py (`make golden`), on one machine only.
     rec = ra.el_centro()
     keep = rec.t <= 5.0
@@ -261,8 +261,8 @@ def test_no_friction_chain_history_is_safe_with_its_spread():
     a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 20)
     r = mdof.simulate(a, rec.scaled(1.5 * a.ap_min / rec.pga), t_free=1.0, h_factor=0.005)
     assert not r.overturned and r.steps == 4258 and r.lcp_failures == 0
-    assert 100 <= r.impacts <= 400 and 6 <= r.open_joints_max <= 14
-    assert 0.15 <= r.max_rotation_ratio <= 0.6
+    assert 100 <= r.impacts <= 600 and 6 <= r.open_joints_max <= 16
+    assert 0.08 <= r.max_rotation_ratio <= 0.6
     assert r.max_slip == 0.0 and r.sliding_contacts_max == 0  # no friction: no sliding
 
 

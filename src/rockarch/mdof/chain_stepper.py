@@ -41,6 +41,7 @@ import numpy as np
 from rockarch.core.response import thread_map
 from rockarch.mdof.chain_solver import EPS_REG, KD, TOL_LCP, band_solve, lcp, masked_band
 from rockarch.mdof.kinematics import (
+    APPROACH_SPEED,
     IMPACT_HORIZON,
     IMPACT_SPEED,
     advance,
@@ -50,6 +51,7 @@ from rockarch.mdof.kinematics import (
     impact_ahead,
     kinetic,
     moves_away,
+    normal_bias,
     predict,
     record,
     rest_under_gravity,
@@ -194,9 +196,9 @@ def _apply(nbod, n, jl, jr, lam, im, ii, ux, uy, uphi):
 
 
 @nb.njit(cache=True)
-def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, hh, eps,
-                  tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset, free, sol, vx, vy,
-                  om):
+def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, hh, v_app,
+                  bias, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset, free,
+                  sol, vx, vy, om):
     """Geometry at (x, y, ph), LCP for v_free, v⁺ into (vx, vy, om). Returns LCP iterations."""
     n = 3 * nj
     _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr)
@@ -209,11 +211,9 @@ def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, h
         if k < nbod:
             u += jr[r, 0] * vfx[k] + jr[r, 1] * vfy[k] + jr[r, 2] * vfo[k]
         c = r - 3 * k
-        if c < 2 and gap[k, c] > gtol:
-            # speculative contact: the corner may close its gap by the next midpoint, no
-            # more; within the tolerance it is in contact (U_n ≥ 0, closed by _project)
-            u += gap[k, c] / hh
-        ufree[r] = u
+        # a corner in contact, striking or speculative (Eq. 6.4)
+        bias[r] = normal_bias(gap[k, c], u, gtol, hh, v_app) if c < 2 else 0.0
+        ufree[r] = u + bias[r]
     # every corner is a (speculative) contact; the no-slip row is bilateral and always on
     # (the model has no sliding: an open joint stays hinged at its corner)
     for r in range(n):
@@ -298,6 +298,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     sol = np.zeros(n)
     lam = np.zeros(n)
     ufree = np.zeros(n)
+    bias = np.zeros(n)
     inset = np.zeros(n, dtype=np.bool_)
     free = np.zeros(n, dtype=np.bool_)
     t_inset = np.zeros(n, dtype=np.bool_)
@@ -329,6 +330,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     ahead = False
     nsub, sub, t_step, hc = 1, 0, 0.0, h
     v_imp = IMPACT_SPEED * g * h
+    v_app = APPROACH_SPEED * g * h
     reach = IMPACT_HORIZON * h
     while step < n_steps:
         nsub, t_step, hc = step_start(sub, ahead, t, t_step, nsub, h, hc, lam)
@@ -339,8 +341,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             vfy[j] = vy[j] - hc * g
             vfo[j] = om[j]
         its = _contact_step(nbod, nj, xm, ym, phm, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol,
-                            hc, eps, tol_u, tol_l * hc / h, gap, jl, jr, wb, kb, lb, rhs, lam,
-                            ufree, inset, free, sol, vx, vy, om)
+                            hc, v_app, bias, eps, tol_u, tol_l * hc / h, gap, jl, jr, wb, kb,
+                            lb, rhs, lam, ufree, inset, free, sol, vx, vy, om)
         if its < 0:
             fails += 1
         advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
@@ -348,8 +350,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
         for r in range(n):
             k = r // 3
             c = r - 3 * k
-            if c < 2:  # closed corners that carried an impulse (not speculative ones)
-                keep[r] = lam[r] > 0.0 and gap[k, c] <= gtol
+            if c < 2:  # corners in contact that carried an impulse (not speculative ones)
+                keep[r] = lam[r] > 0.0 and bias[r] == 0.0
             else:
                 keep[r] = True
             any_keep = any_keep or keep[r]
@@ -386,8 +388,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
                 t_inset[r] = inset[r]
                 t_free_[r] = free[r]
             _contact_step(nbod, nj, x, y, ph, tvx, tvy, tom, rl, rr, n0, im, ii, gtol,
-                          0.5 * h, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, t_lam,
-                          ufree, t_inset, t_free_, sol, tvx, tvy, tom)
+                          0.5 * h, v_app, bias, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs,
+                          t_lam, ufree, t_inset, t_free_, sol, tvx, tvy, tom)
             if moves_away(mass, ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t

@@ -187,6 +187,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     ahead = False
     nsub, sub, t_step, hc = 1, 0, 0.0, h
     v_imp = kin.IMPACT_SPEED * g * h
+    v_app = kin.APPROACH_SPEED * g * h
     reach = kin.IMPACT_HORIZON * h
     while step < n_steps:
         nsub, t_step, hc = kin.step_start(sub, ahead, t, t_step, nsub, h, hc, ws.lam)
@@ -203,7 +204,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             margin = gtol + 2.0 * dt * (2.0 * vnow + dt * (g + a_max))
             next_search = step + DETECT_EVERY
             v_search = vnow
-        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, hc, eps_n, eps, tol_u,
+        its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, hc, v_app, eps_n, eps, tol_u,
                            tol_l * hc / h, margin, ws)
         if its < 0 or ws.cnt[1] > 0:  # not solved, or more new contacts than room
             fails += 1
@@ -221,7 +222,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             k = r // 3
             c = r - 3 * k
             if c < 2:
-                keep[r] = ws.lam[r] > 0.0 and ws.gap[k, c] <= gtol
+                keep[r] = ws.lam[r] > 0.0 and ws.bias[r] == 0.0
             else:
                 keep[r] = keep[r - 1] or keep[r - 2]
             any_keep = any_keep or keep[r]
@@ -263,7 +264,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 tws.sw.st[r] = ws.sw.st[r]
             tws.cnt[0] = 0
             tws.sw.state[0] = 0
-            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, eps_n, eps, tol_u, tol_l,
+            contact_step(m, x, y, ph, tvx, tvy, tom, gtol, 0.5 * h, v_app, eps_n, eps, tol_u, tol_l,
                          gtol, tws)
             if kin.moves_away(mass, ws.ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1

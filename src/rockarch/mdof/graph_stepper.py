@@ -25,8 +25,9 @@ import numba as nb
 import numpy as np
 
 from rockarch.mdof.collision import detect, local_normals, world
-from rockarch.mdof.contact_solver import SolverWork, make_solver_work, solve
+from rockarch.mdof.contact_solver import SolverWork, make_solver_work, row_dot, solve
 from rockarch.mdof.kernel_data import SLIDE_TOL
+from rockarch.mdof.kinematics import normal_bias
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
@@ -460,7 +461,7 @@ def find_contacts(m, ws, x, y, ph, margin):
 
 
 @nb.njit(cache=True)
-def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps_n, eps_t, tol_u, tol_l, margin, ws):
+def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, tol_l, margin, ws):
     """Geometry at (x, y, ph) (the joints and the point contacts within ``margin``), then
     the exact contact solve of the step (:func:`rockarch.mdof.contact_solver.coulomb`) for
     the free velocities (vx, vy, om), which are turned into v⁺ in place. Warm start: the
@@ -474,19 +475,23 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, eps_n, eps_t, tol_u, tol_l, 
         margin = gtol  # a joint just handed its blocks over: search now
     find_contacts(m, ws, x, y, ph, margin)
     nrows = 3 * nj + 2 * ws.cnt[0]
-    for k in range(nj):
-        for c in range(3):
-            r = 3 * k + c
-            ws.bias[r] = ws.gap[k, c] / hh if c < 2 and ws.gap[k, c] > gtol else 0.0
-    for i in range(ws.cnt[0]):
-        r = 3 * nj + 2 * i
-        ws.bias[r] = ws.cgap[i] / hh if ws.cgap[i] > gtol else 0.0
-        ws.bias[r + 1] = 0.0
     sw = ws.sw
     for j in range(nbod):
         sw.vf[3 * j] = vx[j]
         sw.vf[3 * j + 1] = vy[j]
         sw.vf[3 * j + 2] = om[j]
+    for k in range(nj):
+        for c in range(3):
+            r = 3 * k + c
+            ws.bias[r] = 0.0
+            if c < 2:
+                u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
+                ws.bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
+    for i in range(ws.cnt[0]):
+        r = 3 * nj + 2 * i
+        u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
+        ws.bias[r] = normal_bias(ws.cgap[i], u, gtol, hh, v_app)
+        ws.bias[r + 1] = 0.0
     its = solve(nbod, nrows, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0, ws.tn1,
                 ws.tmu, eps_n, eps_t, sw, tol_u, tol_l, ws.lref[0])
     for j in range(nbod):

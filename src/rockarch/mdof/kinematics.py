@@ -22,6 +22,28 @@ REFINE = 3
 IMPACT_SPEED = 1.0
 #: ... within this many steps at its present closing speed.
 IMPACT_HORIZON = 2.0
+#: A corner approaches if its free normal velocity closes faster than this multiple of
+#: g·h (docs/theory.md Eq. (6.4)); slower ones (resting, sliding) keep the tolerance.
+APPROACH_SPEED = 3.0
+
+
+@nb.njit(cache=True)
+def normal_bias(gap, u, gtol, hh, v_app):
+    """Bias b of a normal row, U_n + b ≥ 0 (docs/theory.md Eq. (6.4)), for the corner's gap
+    [m] at the step's midpoint and its free normal velocity ``u`` [m/s] (negative:
+    closing), step ``hh`` [s], approach speed ``v_app`` [m/s].
+
+    A corner that approaches and would strike within the half step left after the
+    midpoint is in contact now (b = 0: the impact of this step); one that approaches but
+    would not may close at most its gap by the step's end (b = 2·gap/hh), so no partial
+    impulse acts before the strike. Other corners: closed within the tolerance ``gtol``
+    (b = 0), or speculative beyond it (b = gap/hh, closed by the next midpoint).
+    """
+    if gap <= 0.0:
+        return 0.0
+    if u < -v_app:
+        return 0.0 if gap <= -0.5 * u * hh else 2.0 * gap / hh
+    return gap / hh if gap > gtol else 0.0
 
 
 @nb.njit(cache=True)
@@ -98,17 +120,20 @@ def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g):
 
 @nb.njit(cache=True)
 def count_joints(gmid, gtol, was_open, lam):
-    """Impacts (a corner closing with a compressive impulse) and open joints of one step;
-    updates ``was_open``. Returns (impacts, open joints)."""
+    """Impacts (a corner that was open taking a compressive impulse) and open joints of one
+    step; updates ``was_open`` (a corner back within the tolerance stays open until it
+    strikes: an approaching corner keeps its bias, Eq. (6.4)). Returns (impacts, open
+    joints)."""
     impacts = 0
     n_open = 0
     for k in range(gmid.shape[0]):
         op = False
         for c in range(2):
             o = gmid[k, c] > gtol
-            if not o and was_open[k, c] and lam[3 * k + c] > 0.0:
+            hit = lam[3 * k + c] > 0.0
+            if not o and was_open[k, c] and hit:
                 impacts += 1
-            was_open[k, c] = o
+            was_open[k, c] = o or (was_open[k, c] and not hit)
             op = op or o
         if op:
             n_open += 1
@@ -202,7 +227,7 @@ def impact_ahead(gmid, gprev, gtol, hc, reach, v_imp):
         for c in range(2):
             gn = gmid[k, c]
             closing = gprev[k, c] - gn
-            if gn > gtol and closing > v_imp * hc and gn - gtol <= closing / hc * reach:
+            if gn > 0.0 and closing > v_imp * hc and gn <= closing / hc * reach:
                 ahead = True
             gprev[k, c] = gn
     return ahead
