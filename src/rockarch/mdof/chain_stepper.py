@@ -197,8 +197,8 @@ def _apply(nbod, n, jl, jr, lam, im, ii, ux, uy, uphi):
 
 @nb.njit(cache=True)
 def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, hh, v_app,
-                  bias, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset, free,
-                  sol, vx, vy, om):
+                  bias, strike, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs, lam, ufree, inset,
+                  free, sol, vx, vy, om):
     """Geometry at (x, y, ph), LCP for v_free, v⁺ into (vx, vy, om). Returns LCP iterations."""
     n = 3 * nj
     _geometry(nbod, nj, x, y, ph, rl, rr, n0, gap, jl, jr)
@@ -213,6 +213,7 @@ def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, h
         c = r - 3 * k
         # a corner in contact, striking or speculative (Eq. 6.4)
         bias[r] = normal_bias(gap[k, c], u, gtol, hh, v_app) if c < 2 else 0.0
+        strike[r] = c < 2 and u < -v_app and bias[r] == 0.0
         ufree[r] = u + bias[r]
     # every corner is a (speculative) contact; the no-slip row is bilateral and always on
     # (the model has no sliding: an open joint stays hinged at its corner)
@@ -299,6 +300,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     lam = np.zeros(n)
     ufree = np.zeros(n)
     bias = np.zeros(n)
+    strike = np.zeros(n, dtype=np.bool_)
     inset = np.zeros(n, dtype=np.bool_)
     free = np.zeros(n, dtype=np.bool_)
     t_inset = np.zeros(n, dtype=np.bool_)
@@ -341,17 +343,19 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             vfy[j] = vy[j] - hc * g
             vfo[j] = om[j]
         its = _contact_step(nbod, nj, xm, ym, phm, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol,
-                            hc, v_app, bias, eps, tol_u, tol_l * hc / h, gap, jl, jr, wb, kb,
-                            lb, rhs, lam, ufree, inset, free, sol, vx, vy, om)
+                            hc, v_app, bias, strike, eps, tol_u, tol_l * hc / h, gap, jl, jr,
+                            wb, kb, lb, rhs, lam, ufree, inset, free, sol, vx, vy, om)
         if its < 0:
             fails += 1
         advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
         any_keep = False
+        struck = False
         for r in range(n):
             k = r // 3
             c = r - 3 * k
             if c < 2:  # corners in contact that carried an impulse (not speculative ones)
                 keep[r] = lam[r] > 0.0 and bias[r] == 0.0
+                struck = struck or (keep[r] and strike[r])
             else:
                 keep[r] = True
             any_keep = any_keep or keep[r]
@@ -365,7 +369,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
                 v0 += mass[j] * y[j]
             _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb,
                      lb, rhs, mu, 100.0 * gtol)
-            cap_projection_energy(mass, ii, vx, vy, om, y, v0, g)
+            if not struck:  # a strike's projection undoes a passage through (Eq. 6.3a)
+                cap_projection_energy(mass, ii, vx, vy, om, y, v0, g)
         sub, t, step = step_end(sub, nsub, t_step, h, step)
         # joints, impacts
         impacts, open_max, mx, n_open, rho = tally(gmid, gtol, was_open, lam, ph, delta_ref,
@@ -388,8 +393,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
                 t_inset[r] = inset[r]
                 t_free_[r] = free[r]
             _contact_step(nbod, nj, x, y, ph, tvx, tvy, tom, rl, rr, n0, im, ii, gtol,
-                          0.5 * h, v_app, bias, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb, rhs,
-                          t_lam, ufree, t_inset, t_free_, sol, tvx, tvy, tom)
+                          0.5 * h, v_app, bias, strike, eps, tol_u, tol_l, gap, jl, jr, wb, kb, lb,
+                          rhs, t_lam, ufree, t_inset, t_free_, sol, tvx, tvy, tom)
             if moves_away(mass, ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t

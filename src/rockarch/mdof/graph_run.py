@@ -218,11 +218,13 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         slide_max = max(slide_max, n_sl)
         kin.advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
         any_keep = False
+        struck = False
         for r in range(n):
             k = r // 3
             c = r - 3 * k
             if c < 2:
                 keep[r] = ws.lam[r] > 0.0 and ws.bias[r] == 0.0
+                struck = struck or (keep[r] and ws.strike[r])
             else:
                 keep[r] = keep[r - 1] or keep[r - 2]
             any_keep = any_keep or keep[r]
@@ -239,7 +241,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             for j in range(nbod):
                 v0 += mass[j] * y[j]
             project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws, ws)
-            kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
+            if not struck:  # a strike's projection undoes a passage through (Eq. 6.3a)
+                kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
         sub, t, step = kin.step_end(sub, nsub, t_step, h, step)
         impacts, open_max, mx, n_open, rho = kin.tally(gmid, gtol, was_open, ws.lam, ph,
                                                    m.delta_ref, impacts, open_max, mx)

@@ -484,14 +484,18 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, 
         for c in range(3):
             r = 3 * k + c
             ws.bias[r] = 0.0
+            ws.strike[r] = False
             if c < 2:
                 u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
                 ws.bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
+                ws.strike[r] = u < -v_app and ws.bias[r] == 0.0
     for i in range(ws.cnt[0]):
         r = 3 * nj + 2 * i
         u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
         ws.bias[r] = normal_bias(ws.cgap[i], u, gtol, hh, v_app)
+        ws.strike[r] = u < -v_app and ws.bias[r] == 0.0
         ws.bias[r + 1] = 0.0
+        ws.strike[r + 1] = False
     its = solve(nbod, nrows, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0, ws.tn1,
                 ws.tmu, eps_n, eps_t, sw, tol_u, tol_l, ws.lref[0])
     for j in range(nbod):
@@ -605,6 +609,7 @@ class Work(NamedTuple):
     jb: np.ndarray
     wl: np.ndarray  # (nj, 3, 3) the joints' diagonal blocks of W (projection)
     bias: np.ndarray  # (R,)
+    strike: np.ndarray  # (R,) normal rows of corners striking this step (Eq. 6.3a)
     lam: np.ndarray
     rba: np.ndarray  # (R,) bodies of every row
     rbb: np.ndarray
@@ -665,7 +670,7 @@ def make_work(m, scale, cap):
     return Work(m.ra * scale, m.rb * scale, m.fa * scale, m.fb * scale, m.ftol * scale,
                 1.0 / m.mass, 1.0 / inertia,
                 np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
-                np.zeros(n), np.zeros(n), rba, rbb, tn0, tn1,
+                np.zeros(n), np.zeros(n, dtype=np.bool_), np.zeros(n), rba, rbb, tn0, tn1,
                 tmu, pv, np.zeros(nv), np.zeros(nv), local_normals(m.pptr, pv),
                 np.zeros((nv, 2)), np.zeros((npoly, 4)),
                 np.arange(npoly), np.zeros((cap, 2), dtype=np.int64),

@@ -104,7 +104,8 @@ def cumint_knots(tk, ak):
 def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g):
     """After a position projection: a gain of potential energy (O(h²) drift, not physics,
     ``v0`` = Σ m·y before it) is taken from the kinetic energy, so the projection never
-    adds energy (docs/mdof.md, step 6). ``ii`` holds inverse moments of inertia."""
+    adds energy (docs/mdof.md, step 6); not called in a step where a corner struck (Eq.
+    (6.3a)). ``ii`` holds inverse moments of inertia."""
     dv = -g * v0
     ke = 0.0
     for j in range(mass.shape[0]):
