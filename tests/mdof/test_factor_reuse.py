@@ -44,9 +44,9 @@ def test_sliding_wall_reuses_the_factors_and_solves_as_fresh_ones():
         fresh.lam[:] = keep.lam
         fresh.sw.st[:] = keep.sw.st
         fresh.sw.state[0] = 0  # no valid factors: the solve factorises anew
-        assert gs.contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, 3 * G * h, eps, eps, tol_u,
+        assert gs.contact_step(m, xm, ym, phm, vx, vy, om, gtol, h, 1.5 * G * h, eps, eps, tol_u,
                                tol_l, -1.0, keep) >= 0
-        assert gs.contact_step(m, xm, ym, phm, *vf, gtol, h, 3 * G * h, eps, eps, tol_u, tol_l,
+        assert gs.contact_step(m, xm, ym, phm, *vf, gtol, h, 1.5 * G * h, eps, eps, tol_u, tol_l,
                                -1.0, fresh) >= 0
         dv = max(dv, np.abs(vx - vf[0]).max(), np.abs(vy - vf[1]).max(),
                  (np.abs(om - vf[2]) * m.thick_min).max())

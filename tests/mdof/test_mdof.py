@@ -251,9 +251,9 @@ def test_no_friction_chain_history_is_safe_with_its_spread():
     # 20-voussoir arch, the first 5 s of El Centro at 1.5·ap_min, 1 s free (h·p = 0.005
     # fixed). The verdict and the number of steps are deterministic; the impacts, open
     # joints and largest rotation of such a history are chaotic: scaling the record by
-    # 1 + 1e-9 and halving the step twice gave 193–283 impacts, 10–11 open joints and a
-    # largest rotation of 0.23–0.37 of delta (2026-11-29; 235–389, 10–13 and 0.13–0.40 with
-    # an intermediate version of Eq. (6.3a)), so they are tested as bands around that
+    # 1 + 1e-9 and halving the step twice gave 232–403 impacts, 9–13 open joints and a
+    # largest rotation of 0.26–0.39 of delta (2026-11-29; 193–389, 10–13 and 0.13–0.40 with
+    # earlier versions of Eq. (6.3a)), so they are tested as bands around that
     # spread. The bit-identical guard for refactors is benchmarks/golden.py (`make golden`),
     # on one machine only.
     rec = ra.el_centro()

@@ -162,7 +162,7 @@ def test_fully_open_joint_separates(mu):
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1] + 1e-3, np.zeros(1)
     vx, vy, om = np.array([1.0]), np.zeros(1), np.zeros(1)
     h = 1e-3  # the gap (1 mm) is not closed within the step: no speculative contact
-    its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 3 * G * h, 1e-12, 1e-12,
+    its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1.5 * G * h, 1e-12, 1e-12,
                           1e-9, 1e-12, 1e-4 * 0.5, ws)
     assert its >= 0
     assert (vx[0], vy[0], om[0]) == (1.0, 0.0, 0.0) and np.all(ws.lam == 0.0)
@@ -182,7 +182,7 @@ def test_no_sliding_joint_holds_while_compressed():
     x, y, ph = m.c0[:, 0].copy(), m.c0[:, 1].copy(), np.zeros(1)
     h = 1e-3
     vx, vy, om = np.array([0.01]), np.array([-G * h]), np.zeros(1)
-    its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 3 * G * h, 1e-12, 1e-12,
+    its = gs.contact_step(m, x, y, ph, vx, vy, om, 1e-4 * 0.5, h, 1.5 * G * h, 1e-12, 1e-12,
                           1e-9, 1e-12, 1e-4 * 0.5, ws)
     assert its >= 0
     assert ws.lam[0] + ws.lam[1] > 0.0

@@ -23,8 +23,10 @@ IMPACT_SPEED = 1.0
 #: ... within this many steps at its present closing speed.
 IMPACT_HORIZON = 2.0
 #: A corner approaches if its free normal velocity closes faster than this multiple of
-#: g·h (docs/theory.md Eq. (6.4)); slower ones (resting, sliding) keep the tolerance.
-APPROACH_SPEED = 3.0
+#: g·h (docs/theory.md Eq. (6.3a)); slower ones keep the tolerance. A corner resting on
+#: the ground closes at g·h in the free velocity (one step of gravity): 1.5 leaves it
+#: alone and catches the slow strikes of small rocking (a block's corner at a few cm/s).
+APPROACH_SPEED = 1.5
 
 
 @nb.njit(cache=True)
