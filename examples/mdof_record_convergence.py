@@ -17,7 +17,7 @@ three steps (``--h-factors 0.0025,0.00125,0.000625``: the next halvings, ≈ 25 
 
 Run:  .venv/bin/python examples/mdof_record_convergence.py      (≈ 7 min on 2 cores)
 
-(Measured 2026-11-29 with ``--friction``: 324 s on an otherwise idle 2-core machine; the
+(Measured 2026-11-29 with ``--friction``: 332 s on an otherwise idle 2-core machine; the
 runs at h/4 take about half of it.)
 """
 
