@@ -211,7 +211,7 @@ def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, h
         if k < nbod:
             u += jr[r, 0] * vfx[k] + jr[r, 1] * vfy[k] + jr[r, 2] * vfo[k]
         c = r - 3 * k
-        # a corner in contact, striking or speculative (Eq. 6.4)
+        # a corner in contact, striking or speculative (Eq. 6.3a)
         bias[r] = normal_bias(gap[k, c], u, gtol, hh, v_app) if c < 2 else 0.0
         strike[r] = c < 2 and u < -v_app and bias[r] == 0.0
         ufree[r] = u + bias[r]

@@ -31,7 +31,7 @@ APPROACH_SPEED = 1.5
 
 @nb.njit(cache=True)
 def normal_bias(gap, u, gtol, hh, v_app):
-    """Bias b of a normal row, U_n + b ≥ 0 (docs/theory.md Eq. (6.4)), for the corner's gap
+    """Bias b of a normal row, U_n + b ≥ 0 (docs/theory.md Eq. (6.3a)), for the corner's gap
     [m] at the step's midpoint and its free normal velocity ``u`` [m/s] (negative:
     closing), step ``hh`` [s], approach speed ``v_app`` [m/s].
 
@@ -125,7 +125,7 @@ def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g):
 def count_joints(gmid, gtol, was_open, lam):
     """Impacts (a corner that was open taking a compressive impulse) and open joints of one
     step; updates ``was_open`` (a corner back within the tolerance stays open until it
-    strikes: an approaching corner keeps its bias, Eq. (6.4)). Returns (impacts, open
+    strikes: an approaching corner keeps its bias, Eq. (6.3a)). Returns (impacts, open
     joints)."""
     impacts = 0
     n_open = 0
