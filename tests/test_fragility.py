@@ -167,6 +167,24 @@ def test_ida_of_an_mdof_arch_is_its_oas_boundary():
     assert res.ratio_collapse[0] == ds["boundary"].values[0]
 
 
+def test_the_default_scan_follows_the_structure():
+    # the block's scan (81 values, 0.001) and the cheaper one of assemblies (17, 0.01):
+    # docs/mdof.md, "The IDA scan of assemblies"; a given grid or tolerance wins
+    m = ra.pulse("sine", period=0.5)
+    lines: list[str] = []
+    col = ra.system("mdof", column=[(0.2, 0.6)], t_free=0.5)
+    res = fr.ida(col, [m], float(col.p_ref), log=lines.append)
+    assert res.ratio.size == 17 and res.tol == 0.01
+    assert res.ratio[0] == 1.0 and res.ratio[-1] == 5.0
+    assert lines[1].startswith("IDA: 1 record(s), ap/ap,min = 1 … 5 in 17 values")
+    assert lines[2].endswith("s)") and "record 1/1 done" in lines[2] and len(lines) == 3
+    blk = ra.system("block", alpha=0.1)
+    res = fr.ida(blk, [m], 2.0)
+    assert res.ratio.size == 81 and res.tol == 0.001
+    res = fr.ida(col, [m], float(col.p_ref), ratio=[1.0, 3.0], tol=0.05)
+    assert res.ratio.size == 2 and res.tol == 0.05
+
+
 def test_likelihood_gradient_matches_finite_differences():
     from scipy.optimize import approx_fprime
 

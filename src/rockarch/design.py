@@ -20,6 +20,7 @@ inverse, Eqs. 11.36–11.42).
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,7 +28,7 @@ import xarray as xr
 
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
-from rockarch.core.constants import OAS_TOL, G
+from rockarch.core.constants import G
 from rockarch.core.validate import in_range, integer, positive
 from rockarch.motion.signals import GroundMotion
 from rockarch.risk import fragility as fr
@@ -157,10 +158,11 @@ def _safe_ratio(value: float, top: float) -> tuple[float, bool]:
 
 def design_system(system, *, records=None, names=None, site: xr.Dataset | None = None,
                   p: float | None = None, curve: str = "envelope", percentile: float = 50.0,
-                  ratio=None, tol: float = OAS_TOL, n_bootstrap: int = fr.N_BOOTSTRAP,
+                  ratio=None, tol: float | None = None, n_bootstrap: int = fr.N_BOOTSTRAP,
                   level: float = 0.95, pga: float | None = None,
                   probability: float | None = 0.1, g: float = G, executor=None,
-                  store=None, progress: bool = False) -> SystemDesign:
+                  store=None, progress: bool = False,
+                  log: Callable[[str], None] | None = None) -> SystemDesign:
     """Largest safe PGA of any structure at a site (docs/theory.md Eqs. (11.34)–(11.35)).
 
     Parameters
@@ -176,10 +178,12 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     p : the structure's frequency parameter [1/s] (default its own, ``system.p_ref``).
     curve : ``"envelope"`` or ``"characteristic"`` (the percentile; with ``site`` the
         file's own percentile).
-    ratio, tol : the IDA scan grid of ap/ap,min (default 1 … 5, 81 values) and bisection
-        tolerance; n_bootstrap, level, pga, probability : as in
+    ratio, tol : the IDA scan grid of ap/ap,min and bisection tolerance (default those of
+        :func:`rockarch.risk.fragility.ida`: 1 … 5 in 81 values and 0.001, 17 values and
+        0.01 for MDOF assemblies); n_bootstrap, level, pga, probability : as in
         :func:`rockarch.risk.fragility.design_summary`.
     executor, store, progress : as in :func:`rockarch.spectra.oas.compute_oas`.
+    log : one line per finished record of the IDA, as in :func:`rockarch.risk.fragility.ida`.
     """
     check_system(system, "system")
     if site is not None and not isinstance(site, xr.Dataset):
@@ -223,7 +227,7 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     names = getattr(records, "names", names)
     motions = getattr(records, "motions", records)
     res = fr.ida(system, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
-                 store=store, progress=progress)
+                 store=store, progress=progress, log=log)
     env, char = site_mod.curves(res.ratio_collapse, percentile)
     r, lower = _safe_ratio(env if curve == "envelope" else char, res.ratio[-1])
     note, summary = None, None

@@ -17,6 +17,7 @@ import numpy as np
 import typer
 
 from rockarch.arch.geometry import SHAPES
+from rockarch.core.console import on_terminal
 from rockarch.core.constants import GAP_TOL, MDOF_H_FACTOR, OAS_TOL, T_FREE, G
 from rockarch.core.sweep import check_steps, default_store_dir
 from rockarch.core.validate import frequency, ratio_value
@@ -200,6 +201,18 @@ def echo_err(msg: str) -> None:
     typer.echo(msg, err=True)
 
 
+def stage_echo() -> Callable[[str], None] | None:
+    """Where stderr is not a terminal (a log file, a pipe), a function that prints
+    ``progress: MESSAGE`` there: a long command then prints a line per stage (the structure
+    built, each record's IDA done); None on a terminal, where its progress bars show the
+    stages."""
+    return None if on_terminal(None) else _progress_line
+
+
+def _progress_line(msg: str) -> None:
+    echo_err(f"progress: {msg}")
+
+
 def read_records(sources, units: str | None) -> Suite:
     """The suite of --records, its notes (records left out, implausible PGAs: wrong units?)
     printed as warnings on stderr."""
@@ -226,6 +239,14 @@ JSON_OPT = typer.Option(False, "--json", help="Print one JSON object.")
 TOL_OPT = typer.Option(OAS_TOL, help="Bisection tolerance of the boundary (ratio); 0 "
                        "turns the bisection off (the boundary is then the first "
                        "overturning grid value).")
+
+#: The IDA scan's options (fragility, risk, design --system --records): the defaults
+#: follow the structure (rockarch.risk.record_scan.default_scan).
+IDA_STEPS_OPT = typer.Option(None, help="IDA scan values of ap/ap,min from 1 (default 81; "
+                             "17 for mdof, whose simulations cost seconds: collapse islands "
+                             "narrower than its step 0.25 may be missed, docs/mdof.md).")
+IDA_TOL_OPT = typer.Option(None, help="Bisection tolerance of each record's collapse point "
+                           "(ratio; default 0.001, 0.01 for mdof); 0 turns it off.")
 
 SHAPE_OPT = typer.Option(None, help="Arch shape.")
 SPAN_OPT = typer.Option(None, help="Span l of the axis [m].")

@@ -20,7 +20,12 @@ from rockarch.output import check_outputs
 from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.risk import fragility as fr
-from rockarch.risk.record_scan import SEARCH_STEP, check_island_step, check_search_step
+from rockarch.risk.record_scan import (
+    SEARCH_STEP,
+    check_island_step,
+    check_search_step,
+    default_scan,
+)
 
 #: The --im choices (the library's registry, and "all": the dispersion of each on one IDA).
 Im = Enum("Im", {v: v for v in (*fr.IMS, "all")}, type=str)
@@ -62,8 +67,8 @@ IDA: Group = (
     ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
                                       "`rockarch oas`); records safe up to it are "
                                       "censored.")),
-    ("ratio_steps", int, typer.Option(81, help="Scan values of ap/ap,min from 1.")),
-    ("tol", float, cc.TOL_OPT),
+    ("ratio_steps", int, cc.IDA_STEPS_OPT),
+    ("tol", float, cc.IDA_TOL_OPT),
     ("search_step", float, typer.Option(None, help=SEARCH_HELP)),
     ("island_step", int, typer.Option(1, help="Adaptive scan: every ratio up to the first "
                                       "collapse, then every K-th one, each safe value found "
@@ -71,6 +76,21 @@ IDA: Group = (
                                       "fewer simulations; islands narrower than K ratios "
                                       "may be missed). 1: every ratio.")),
 )
+
+
+def ida_scan(opts: dict, sysobj) -> tuple[np.ndarray, float]:
+    """The IDA scan grid of ap/ap,min and bisection tolerance of --ratio-max,
+    --ratio-steps and --tol, the structure's defaults where they are not given
+    (:func:`rockarch.risk.record_scan.default_scan`)."""
+    steps, tol = default_scan(sysobj)
+    steps = steps if opts["ratio_steps"] is None else opts["ratio_steps"]
+    if steps < 2:
+        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
+    if opts["ratio_max"] is not None and not opts["ratio_max"] > 1:
+        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
+                         f"{opts['ratio_max']}")
+    return (cc.ratio_grid(1.0, opts["ratio_max"], steps),
+            tol if opts["tol"] is None else opts["tol"])
 
 
 def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
@@ -86,12 +106,7 @@ def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
         if opts["system"].value != "mdof" or opts["shape"] is not None:
             raise ValueError("give the structure's frequency parameter --p [1/s]")
         opts = {**opts, "p": float(sysobj.p_ref)}
-    if opts["ratio_steps"] < 2:
-        raise ValueError("--ratio-steps must be >= 2 for an IDA scan")
-    if opts["ratio_max"] is not None and not opts["ratio_max"] > 1:
-        raise ValueError(f"--ratio-max must be > 1 (the scan starts at ap/ap,min = 1), got "
-                         f"{opts['ratio_max']}")
-    ratios = cc.ratio_grid(1.0, opts["ratio_max"], opts["ratio_steps"])
+    ratios, tol = ida_scan(opts, sysobj)
     check_island_step(opts["island_step"])
     if opts["search_step"] is not None:
         check_search_step(opts["search_step"])
@@ -100,10 +115,10 @@ def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
     with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):
         res = fr.ida(sysobj, motions, opts["p"], names=suite.names, im=im, period=period,
-                     ratio=ratios, tol=opts["tol"],
+                     ratio=ratios, tol=tol,
                      progress=progress and sys.stderr.isatty(), executor=executor,
                      store=chunk_store, island_step=opts["island_step"],
-                     search_step=opts["search_step"])
+                     search_step=opts["search_step"], log=cc.stage_echo())
     return res, motions
 
 
@@ -224,6 +239,8 @@ def _print_table(frag: fr.Fragility) -> None:
     name = r.im if r.period is None else f"{r.im}(T = {r.period:g} s)"
     typer.echo(f"fragility of {r.system} at p = {r.p:g} 1/s over {len(r.records)} records "
                f"(IM = {name} [{unit}])")
+    typer.echo(f"scan: ap/ap,min = {r.ratio[0]:g} … {r.ratio[-1]:g} in {r.ratio.size} "
+               f"values, collapse points bisected to {r.tol:g}")
     typer.echo(f"{'record':<44} {'IM at collapse':>15} {'resurrections':>14}")
     for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit, r.resurrections,
                                strict=True):

@@ -13,6 +13,8 @@ from rockarch.arch.replacement import RULES
 from rockarch.cli._app import app
 from rockarch.cli._common import (
     G_OPT,
+    IDA_STEPS_OPT,
+    IDA_TOL_OPT,
     JSON_OPT,
     TFREE_OPT,
     TOL_OPT,
@@ -24,6 +26,7 @@ from rockarch.cli._common import (
     print_json,
     ratio_grid,
     read_records,
+    stage_echo,
     value,
 )
 from rockarch.cli._groups import (
@@ -37,7 +40,7 @@ from rockarch.cli._groups import (
     system_of,
 )
 from rockarch.cli._sweep import open_sweep
-from rockarch.cli.fragility import _print_table, ida_sweep_options
+from rockarch.cli.fragility import _print_table, ida_scan, ida_sweep_options
 from rockarch.cli.risk import RISK, check_years, hazard_of
 from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system, site_risk, smallest_thickness
@@ -142,9 +145,7 @@ def design(
     ratio_max: float = typer.Option(None, help="--system with --records: IDA scan limit "
                                     "ap/ap,min (default 5); records safe up to it are "
                                     "censored."),
-    ratio_steps: int = typer.Option(81, help="--system with --records: IDA scan values of "
-                                    "ap/ap,min from 1."),
-    tol: float = TOL_OPT, t_free: float = TFREE_OPT,
+    ratio_steps: int = IDA_STEPS_OPT, tol: float = IDA_TOL_OPT, t_free: float = TFREE_OPT,
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="--system with --records: bootstrap "
                                   "resamples of the fragility's interval (0: none)."),
     site_file: Path = typer.Option(None, "--site", help="Site OAS file (rockarch site-oas)."),
@@ -404,18 +405,17 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
         res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
                             g=kw["g"])
     else:
-        if opt["ratio_steps"] < 2 or (opt["ratio_max"] or 2.0) <= 1:
-            raise ValueError("the IDA scan needs --ratio-steps >= 2 and --ratio-max > 1")
         if not 0 <= opt["bootstrap"] <= fr.MAX_BOOTSTRAP:
             raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got "
                              f"{opt['bootstrap']}")
-        ratios = ratio_grid(1.0, opt["ratio_max"], opt["ratio_steps"])
+        ratios, tol = ida_scan(opt, sysobj)
         suite = read_records(records, opt["units"])
         with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
                         echo=echo_err) as (executor, chunk_store):
-            res = design_system(sysobj, records=suite, ratio=ratios, tol=opt["tol"],
+            res = design_system(sysobj, records=suite, ratio=ratios, tol=tol,
                                 n_bootstrap=opt["bootstrap"], executor=executor,
-                                store=chunk_store, progress=sys.stderr.isatty(), **kw)
+                                store=chunk_store, progress=sys.stderr.isatty(),
+                                log=stage_echo(), **kw)
     for msg in (res.note,) if res.note else ():
         echo_err(f"warning: {msg}; no lognormal fit")
     if res.ratio_is_lower_bound:

@@ -41,6 +41,7 @@ from rockarch.risk.record_scan import (
     TaskBar,
     check_island_step,
     check_search_step,
+    default_scan,
     default_search_step,
 )
 from rockarch.spectra import site
@@ -166,9 +167,10 @@ def count_resurrections(over: np.ndarray, ratio=None, collapse=None) -> np.ndarr
 
 
 def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
-        im: str = "pga", period: float | None = None, ratio=None, tol: float = OAS_TOL,
-        progress: bool = False, executor=None, store=None,
-        island_step: int = 1, search_step: float | None = None) -> IDAResult:
+        im: str = "pga", period: float | None = None, ratio=None,
+        tol: float | None = None, progress: bool = False, executor=None, store=None,
+        island_step: int = 1, search_step: float | None = None,
+        log: Callable[[str], None] | None = None) -> IDAResult:
     """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
 
     Parameters
@@ -178,9 +180,12 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     p : frequency parameter [1/s] (the structure's size).
     names : record names (default the motions' names).
     im, period : intensity measure (:data:`IMS`; ``sa`` at ``period`` [s]).
-    ratio : scan grid of ap/ap,min (default that of ``rockarch oas``: 1 … 5, 81 values);
-        its last value is the scan limit (censoring).
-    tol, progress, executor, store : as in :func:`rockarch.spectra.oas.compute_oas`; every
+    ratio : scan grid of ap/ap,min; its last value is the scan limit (censoring). Default
+        1 … 5 in 81 values (that of ``rockarch oas``), 17 values for MDOF assemblies
+        (:func:`rockarch.risk.record_scan.default_scan`).
+    tol : bisection tolerance of the collapse point (ratio units); default 0.001, 0.01 for
+        MDOF assemblies.
+    progress, executor, store : as in :func:`rockarch.spectra.oas.compute_oas`; every
         record is one task (:class:`RecordScan`), run in this process, on local processes
         or on Dask, and stored as it finishes (the progress bar counts records).
     island_step : 1 (default) runs every grid value; s > 1 the adaptive scan of
@@ -189,6 +194,8 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     search_step : step h of the search for collapse islands below the grid's first
         collapse (Eq. (11.30a), :class:`RecordScan`); None (default): 0.0025 for every
         system but MDOF assemblies, 0 (the grid alone) for those; 0: no search.
+    log : called with a line per stage (the structure and the scan, when the IDA starts;
+        each record, when it is done), e.g. ``print`` where no progress bar is shown.
     """
     motions = tuple(motions)
     if not motions:
@@ -196,11 +203,12 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     p = float(p)
     if not (math.isfinite(p) and p > 0):
         raise ValueError(f"p must be a finite number > 0, got {p}")
-    ratio = _grid("ratio", np.round(np.linspace(1.0, 5.0, 81), 12) if ratio is None
+    steps, tol_default = default_scan(system)
+    ratio = _grid("ratio", np.round(np.linspace(1.0, 5.0, steps), 12) if ratio is None
                   else ratio)
     if ratio[0] < 0:
         raise ValueError("ratio values must be >= 0")
-    tol = tolerance("tol", tol)
+    tol = tolerance("tol", tol_default if tol is None else tol)
     names = tuple(m.name for m in motions) if names is None else tuple(names)
     if len(names) != len(motions):
         raise ValueError("give one name per record")
@@ -209,6 +217,11 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     search_step = (default_search_step(system) if search_step is None
                    else check_search_step(search_step))
     scan = RecordScan(system, p, tol, check_island_step(island_step), search_step)
+    if log is not None:
+        log(f"structure {system.name}: p = {p:.4g} 1/s, ap,min = "
+            f"{float(system.ap_min):.4g} m/s²")
+        log(f"IDA: {len(motions)} record(s), ap/ap,min = {ratio[0]:g} … {ratio[-1]:g} in "
+            f"{ratio.size} values, collapse points bisected to {tol:g}")
     task_ratio = np.append(ratio, np.nan)
     # one task per record, the longest records first (they finish last otherwise); each
     # record is stored under its own key as it finishes (resumable, and reused by any
@@ -226,7 +239,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         with tqdm(total=len(motions), desc=scan.name, unit="record",
                   disable=not progress, leave=False) as bar:
             res = sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
-                                   bar=TaskBar(bar), keys=keys)
+                                   bar=TaskBar(bar, log, scan.name, len(motions)), keys=keys)
     finally:
         if owned:
             executor.close()

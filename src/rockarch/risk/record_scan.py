@@ -11,11 +11,13 @@ bisection rounds, and each finished record is stored under its own key.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch.core.constants import OAS_TOL
 from rockarch.core.validate import show
 from rockarch.motion.signals import GroundMotion
 from rockarch.spectra.oas import refine_boundary
@@ -27,6 +29,26 @@ SEARCH_STEP = 0.0025
 #: Values of the search per ``system.run`` call and numba thread (a call costs about one
 #: block simulation; the values run above the first collapse are the overshoot).
 SEARCH_BATCH = 16
+
+
+#: The IDA scan grid (Eq. (11.30)) of systems simulated by an SDOF kernel: this many values
+#: of ap/ap,min from 1 to the scan limit, the lowest collapse bisected to ``OAS_TOL``: the
+#: grid of ``rockarch oas``.
+SCAN_STEPS = 81
+#: The IDA scan of MDOF assemblies: values and bisection tolerance. A simulation of an
+#: assembly costs seconds, and a record that never collapses runs every value to its end;
+#: the price is collapse islands narrower than the step (0.25) that the scan misses:
+#: docs/mdof.md, "The IDA scan of assemblies", measures it.
+MDOF_SCAN = (17, 0.01)
+
+
+def default_scan(system) -> tuple[int, float]:
+    """(values, bisection tolerance) of the IDA scan of ``system`` when none is given:
+    :data:`SCAN_STEPS` and ``OAS_TOL`` for the SDOF kinds, :data:`MDOF_SCAN` for MDOF
+    assemblies (Eq. (11.30))."""
+    from rockarch.systems import MDOFSystem
+
+    return MDOF_SCAN if isinstance(system, MDOFSystem) else (SCAN_STEPS, OAS_TOL)
 
 
 def check_search_step(step) -> float:
@@ -60,16 +82,24 @@ def check_island_step(step) -> int:
 
 class TaskBar:
     """A progress bar that advances by one per finished task (sweep.run_chunks counts
-    the simulations of a task) or, with None, shows nothing (a record's own bisection)."""
+    the simulations of a task) or, with None, shows nothing (a record's own bisection).
+    ``line`` (e.g. a line on stderr where no bar is shown) gets ``"LABEL: record k/n done
+    (T s)"`` for each finished task, stored ones included."""
 
     n = total = 0
 
-    def __init__(self, bar=None) -> None:
-        self.bar = bar
+    def __init__(self, bar=None, line: Callable[[str], None] | None = None,
+                 label: str = "IDA", total: int = 0) -> None:
+        self.bar, self.line, self.label, self.n_tasks = bar, line, label, total
+        self.done, self.t0 = 0, time.perf_counter()
 
     def update(self, n: int = 1) -> None:
         if self.bar is not None:
             self.bar.update(1)
+        self.done += 1
+        if self.line is not None:
+            self.line(f"{self.label}: record {self.done}/{self.n_tasks} done "
+                      f"({time.perf_counter() - self.t0:.0f} s)")
 
     def refresh(self) -> None:
         pass
