@@ -98,7 +98,7 @@ def site_oas(
                     echo=echo_err) as (executor, chunk_store):
         ds = site_mod.site_oas(motions, ps, ratios, system=sysobj, percentile=percentile,
                                tol=tol, hashes=hashes, progress=sys.stderr.isatty(),
-                               executor=executor, store=chunk_store)
+                               executor=executor, store=chunk_store, log=stage_echo())
 
     ds = characteristic(ds, motions)  # normalised and simplified curves (design --curve)
     with staged(out, plot) as (out_tmp, plot_tmp):

@@ -11,6 +11,8 @@ and SHA-256 hashes, reused by :mod:`rockarch.design`.
 from __future__ import annotations
 
 import hashlib
+import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -76,7 +78,7 @@ def curves(boundary, percentile: float) -> tuple[np.ndarray, np.ndarray]:
 def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
              progress: bool | None = None, executor=None, store=None, system=None,
-             **system_kw) -> xr.Dataset:
+             log: Callable[[str], None] | None = None, **system_kw) -> xr.Dataset:
     """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
 
     The structure is the slender block of slenderness ``alpha`` (the paper's site OAS), or
@@ -89,6 +91,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     percentile is more conservative), and the records' names, PGAs and hashes.
     ``executor`` and ``store`` are those of :func:`rockarch.spectra.oas.compute_oas` (one
     executor serves every record: a pool or cluster starts once).
+    ``log`` (e.g. ``print`` where no progress bar is shown) gets a line per record done.
     """
     if not motions:
         raise ValueError("a site OAS needs at least one record")
@@ -107,7 +110,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     executor, owned = sweep.as_executor(executor)
     store = sweep.as_store(store)
     progress = on_terminal(progress)
-    maps = []
+    maps, t0 = [], time.perf_counter()
     try:
         for k, m in enumerate(motions):
             if progress:
@@ -116,6 +119,9 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
                 tqdm.write(f"record {k + 1}/{len(motions)}: {m.name}")
             maps.append(spectra.compute_oas(system, m, p, ratio, tol=tol, progress=progress,
                                             executor=executor, store=store))
+            if log is not None:
+                log(f"site OAS: record {k + 1}/{len(motions)} done: {m.name} "
+                    f"({time.perf_counter() - t0:.0f} s)")
     finally:
         if owned:
             executor.close()
