@@ -221,7 +221,8 @@ def design(
                         echo=echo_err) as (executor, chunk_store):
             site_ds = charsite.site_from_records(suite, executor=executor, store=chunk_store,
                                                 percentile=percentile,
-                                                progress=sys.stderr.isatty())
+                                                progress=sys.stderr.isatty(),
+                                                log=stage_echo())
         if save_site is not None:
             site_mod.save(site_ds, save_site)
     else:

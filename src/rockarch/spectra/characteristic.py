@@ -253,10 +253,11 @@ DESIGN_RATIO = np.round(np.linspace(1.0, 5.0, 81), 12)
 
 
 def site_from_records(suite, *, percentile: float = 50.0, executor=None, store=None,
-                      progress: bool = False) -> xr.Dataset:
+                      progress: bool = False, log=None) -> xr.Dataset:
     """The slender-block site OAS of a suite (:func:`rockarch.motion.suite.read_suite`) on
-    :data:`DESIGN_P` × :data:`DESIGN_RATIO`, with the characteristic curves added."""
+    :data:`DESIGN_P` × :data:`DESIGN_RATIO`, with the characteristic curves added (``log``:
+    a line per record done, as in :func:`rockarch.spectra.site.site_oas`)."""
     ds = site.site_oas(suite.motions, DESIGN_P, DESIGN_RATIO, percentile=percentile,
-                       progress=progress, executor=executor, store=store)
+                       progress=progress, executor=executor, store=store, log=log)
     ds["record_name"] = (("record",), np.array(suite.names, dtype=str))
     return characteristic(ds, suite.motions)
