@@ -46,6 +46,8 @@ def _check_contract(folder, tmp_path):
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     assert out["im"] == "pga" and out["search_step"] == 0
+    # the block's default scan, as `rockarch oas` (below)
+    assert out["scan"] == {"ratio_min": 1.0, "ratio_max": 5.0, "values": 81, "tol": 0.001}
     names = [q["record"] for q in out["points"]]
     assert names == sorted(p.name for p in folder.iterdir())
     assert png.stat().st_size > 1000

@@ -133,7 +133,8 @@ class SystemDesign:
         if self.ap_min_no_sliding is not None:
             out["ap_min_no_sliding"] = self.ap_min_no_sliding
         if self.fragility is not None:
-            out["points"] = self.fragility.to_dict()["points"]
+            frag = self.fragility.to_dict()
+            out["points"], out["scan"] = frag["points"], frag["scan"]
             out["fragility"] = self.summary
         return out
 

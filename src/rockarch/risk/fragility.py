@@ -458,7 +458,8 @@ class Fragility:
     ci: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        """The CLI's JSON: ``im``, ``median``, ``beta``, ``points`` and ``ci``."""
+        """The CLI's JSON: ``im``, ``median``, ``beta``, ``points``, ``ci`` and the ``scan``
+        of ap/ap,min (its first and last value, number of values, bisection tolerance)."""
         r = self.ida
         points = [{"record": name, "im_collapse": (float(v) if math.isfinite(v) else None),
                    "censored": bool(not math.isfinite(v)),
@@ -477,6 +478,8 @@ class Fragility:
         if r.island_step > 1:
             out["island_step"] = r.island_step
         out["search_step"] = r.search_step
+        out["scan"] = {"ratio_min": float(r.ratio[0]), "ratio_max": float(r.ratio[-1]),
+                       "values": int(r.ratio.size), "tol": r.tol}
         return out
 
 
