@@ -38,24 +38,34 @@ PROJECT_SWEEPS = 1
 def _point(j, x, y, cs, sn, r0, r1):
     """World point of the body-fixed offset (r0, r1) (j < 0: a ground point) and the offset
     turned with the body (cs, sn: cos and sin of every body's rotation). Scalars, not a
-    slice of the offsets: a view per call cost a third of :func:`geometry`."""
+    slice of the offsets: a view per call cost a third of :func:`geometry`. The arrays are
+    read before the branch (the ground reads body 0 and drops it): an array read inside a
+    branch costs numba two atomic reference counts per call, more than the arithmetic."""
+    i = max(j, 0)
+    c = cs[i]
+    s = sn[i]
+    xj = x[i]
+    yj = y[i]
     if j < 0:
         return r0, r1, 0.0, 0.0
-    ox = cs[j] * r0 - sn[j] * r1
-    oy = sn[j] * r0 + cs[j] * r1
-    return x[j] + ox, y[j] + oy, ox, oy
+    ox = c * r0 - s * r1
+    oy = s * r0 + c * r1
+    return xj + ox, yj + oy, ox, oy
 
 
 @nb.njit(cache=True)
 def _rows(ja, jb, r, a, dx, dy, pbx, pby, obx, oby, x, y):
     """Jacobian row r of a contact direction d = (dx, dy) at B's point p_b (arm o_b from
-    B's centroid); body A's arm runs from its centroid to p_b (the exact gap gradient)."""
+    B's centroid); body A's arm runs from its centroid to p_b (the exact gap gradient).
+    (x, y read before the branch: :func:`_point`.)"""
     jb[r, 0] = dx
     jb[r, 1] = dy
     jb[r, 2] = obx * dy - oby * dx
+    xa = x[max(a, 0)]
+    ya = y[max(a, 0)]
     if a >= 0:
-        oax = pbx - x[a]
-        oay = pby - y[a]
+        oax = pbx - xa
+        oay = pby - ya
         ja[r, 0] = -dx
         ja[r, 1] = -dy
         ja[r, 2] = -(oax * dy - oay * dx)
@@ -63,10 +73,15 @@ def _rows(ja, jb, r, a, dx, dy, pbx, pby, obx, oby, x, y):
 
 @nb.njit(cache=True, inline="always")
 def _normal(k, a, cs, sn, n0):
-    """Joint k's normal, turned with body a (the ground's stays)."""
+    """Joint k's normal, turned with body a (the ground's stays; arrays read before the
+    branch: :func:`_point`)."""
+    c = cs[max(a, 0)]
+    s = sn[max(a, 0)]
+    n0x = n0[k, 0]
+    n0y = n0[k, 1]
     if a >= 0:
-        return cs[a] * n0[k, 0] - sn[a] * n0[k, 1], sn[a] * n0[k, 0] + cs[a] * n0[k, 1]
-    return n0[k, 0], n0[k, 1]
+        return c * n0x - s * n0y, s * n0x + c * n0y
+    return n0x, n0y
 
 
 @nb.njit(cache=True, inline="always")
@@ -191,18 +206,13 @@ def _outside(ex0, ey0, ex1, ey1, px, py):
 
 
 @nb.njit(cache=True)
-def _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
-    """True if a corner of joint k (b's point pb, a's point pa) no longer lies over the
-    other block's face: pb beyond the ends of a's face or pa beyond b's (the faces have
-    turned apart: a block tipped over an edge). A sliding joint's corners are the ends of
-    the faces' overlap (:func:`_sliding_joint`), which never are."""
+def _face_ends(k, a, b, x, y, cs, sn, fa, fb):
+    """World ends of joint k's faces: a's (a0x, a0y, a1x, a1y), then b's."""
     a0x, a0y, _, _ = _point(a, x, y, cs, sn, fa[k, 0, 0], fa[k, 0, 1])
     a1x, a1y, _, _ = _point(a, x, y, cs, sn, fa[k, 1, 0], fa[k, 1, 1])
-    if _outside(a0x, a0y, a1x, a1y, pbx, pby):
-        return True
     b0x, b0y, _, _ = _point(b, x, y, cs, sn, fb[k, 0, 0], fb[k, 0, 1])
     b1x, b1y, _, _ = _point(b, x, y, cs, sn, fb[k, 1, 0], fb[k, 1, 1])
-    return _outside(b0x, b0y, b1x, b1y, pax, pay)
+    return a0x, a0y, a1x, a1y, b0x, b0y, b1x, b1y
 
 
 @nb.njit(cache=True)
@@ -224,6 +234,7 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
         nx, ny = _normal(k, a, cs, sn, n0)
         tx = -ny
         ty = nx
+        a0x, a0y, a1x, a1y, b0x, b0y, b1x, b1y = _face_ends(k, a, b, x, y, cs, sn, fa, fb)
         # the corners as built (every joint; redone below for one that slid)
         best = 0
         for cc in range(2):
@@ -232,8 +243,11 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
             dx = pbx - pax
             dy = pby - pay
             gap[k, cc] = nx * dx + ny * dy
-            if _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
-                gap[k, cc] = OFF_GAP  # the faces have turned apart here (a block tipped over)
+            # a corner no longer over the other block's face: b's point beyond the ends of
+            # a's face or a's beyond b's (the faces have turned apart: a block tipped over
+            # an edge; a sliding joint's corners, the ends of the faces' overlap, never are)
+            if _outside(a0x, a0y, a1x, a1y, pbx, pby) or _outside(b0x, b0y, b1x, b1y, pax, pay):
+                gap[k, cc] = OFF_GAP
             if cc == 1 and gap[k, 1] < gap[k, 0]:
                 best = 1
             _rows(ja, jb, 3 * k + cc, a, nx, ny, pbx, pby, obx, oby, x, y)
