@@ -536,16 +536,19 @@ def _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l, it):
 
 @nb.njit(cache=True, inline="always")
 def _wrr(r, rba, rbb, ja, jb, sw):
-    """W_rr = J_r·M⁻¹·J_rᵀ."""
+    """W_rr = J_r·M⁻¹·J_rᵀ (arrays read before the branches: :func:`row_dot`)."""
     a = rba[r]
     b = rbb[r]
+    md = sw.mdiag
+    ia = 3 * max(a, 0)
+    ib = 3 * max(b, 0)
+    wa = (ja[r, 0] ** 2 + ja[r, 1] ** 2) / md[ia] + ja[r, 2] ** 2 / md[ia + 2]
+    wb = (jb[r, 0] ** 2 + jb[r, 1] ** 2) / md[ib] + jb[r, 2] ** 2 / md[ib + 2]
     w = 0.0
     if a >= 0:
-        w += (ja[r, 0] ** 2 + ja[r, 1] ** 2) / sw.mdiag[3 * a] \
-            + ja[r, 2] ** 2 / sw.mdiag[3 * a + 2]
+        w += wa
     if b >= 0:
-        w += (jb[r, 0] ** 2 + jb[r, 1] ** 2) / sw.mdiag[3 * b] \
-            + jb[r, 2] ** 2 / sw.mdiag[3 * b + 2]
+        w += wb
     return w
 
 
@@ -614,9 +617,12 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     if sw.state[1] <= REFINE_KD:
         sw.state[0] = 0  # a narrow band: refactorised at the step's Jacobian (REFINE_KD)
     lamk = sw.lamk
+    st = sw.st  # the work arrays named once: a field read in a loop's branch costs
+    sst2 = sw.sst2  # numba atomic reference counts per row
+    bias2 = sw.bias2
     for r in range(n_rows):
         lamk[r] = lam[r]  # the warm start, kept for the proximal steps
-        sw.sst2[r] = sw.st[r]
+        sst2[r] = st[r]
     _weights(n_rows, tn0, eps_n, eps_t, 0.0, sw.ie)
     its = semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol_u,
                      tol_l, lref, SSN_FIRST, 0.0)
@@ -628,10 +634,10 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     for r in range(n_rows):
         rho = max(rho, _wrr(r, rba, rbb, ja, jb, sw))
         lam[r] = lamk[r]
-        sw.st[r] = sw.sst2[r]
+        st[r] = sst2[r]
     for _ in range(PROX_MAX):
         for r in range(n_rows):
-            sw.bias2[r] = bias[r] - rho * lamk[r]
+            bias2[r] = bias[r] - rho * lamk[r]
         _weights(n_rows, tn0, eps_n, eps_t, rho, sw.ie)
         its = semismooth(nbod, n_rows, rba, rbb, ja, jb, sw.bias2, lam, tn0, tn1, tmu, sw,
                          tol_u, tol_l, lref, SSN_MAX, rho)
@@ -639,7 +645,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
             total += SSN_MAX
             for r in range(n_rows):  # back to the last proximal iterate, more weight on it
                 lam[r] = lamk[r]
-                sw.st[r] = sw.sst2[r]
+                st[r] = sst2[r]
             rho *= PROX_UP
             continue
         total += its
@@ -648,7 +654,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
         for r in range(n_rows):
             dev = max(dev, rho * abs(lam[r] - lamk[r]))
             lamk[r] = lam[r]
-            sw.sst2[r] = sw.st[r]
+            sst2[r] = st[r]
         if dev <= tol_u:
             return total
         if its <= 4:
@@ -657,7 +663,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     # problem, its velocities v_free + M⁻¹·Jᵀ·Λ_k) and counts as failed
     for r in range(n_rows):
         lam[r] = lamk[r]
-        sw.st[r] = sw.sst2[r]
+        st[r] = sst2[r]
     for i in range(3 * nbod):
         sw.g[i] = 0.0
     for r in range(n_rows):

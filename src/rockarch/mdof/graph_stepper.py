@@ -489,15 +489,18 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, 
         sw.vf[3 * j] = vx[j]
         sw.vf[3 * j + 1] = vy[j]
         sw.vf[3 * j + 2] = om[j]
+    bias = ws.bias  # the work arrays named once (a field read in a branch of the loop
+    strike = ws.strike  # costs numba atomic reference counts per row)
+    vf = sw.vf
     for k in range(nj):
         for c in range(3):
             r = 3 * k + c
-            ws.bias[r] = 0.0
-            ws.strike[r] = False
+            bias[r] = 0.0
+            strike[r] = False
             if c < 2:
-                u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
-                ws.bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
-                ws.strike[r] = u < -v_app and ws.bias[r] == 0.0
+                u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, vf)
+                bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
+                strike[r] = u < -v_app and bias[r] == 0.0
     for i in range(ws.cnt[0]):
         r = 3 * nj + 2 * i
         u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
