@@ -294,21 +294,41 @@ def solve3(a, r, out):
 
 @nb.njit(cache=True, inline="always")
 def apply_impulse(k, ba, bb, ja, jb, d, im, ii, vx, vy, om):
-    """Velocities += M⁻¹·J_kᵀ·d (d: impulse increments of the 3 rows of joint k)."""
+    """Velocities += M⁻¹·J_kᵀ·d (d: impulse increments of the 3 rows of joint k). No array
+    is read or written inside a branch (numba's atomic reference counts per call cost more
+    than the arithmetic): a side without a body, or a zero increment, writes back the
+    velocities it read (body 0's for the ground: unchanged)."""
     a = ba[k]
     b = bb[k]
+    ia = max(a, 0)
+    ib = max(b, 0)
+    ima = im[ia]
+    iia = ii[ia]
+    imb = im[ib]
+    iib = ii[ib]
     for i in range(3):
-        if d[i] == 0.0:
-            continue
         r = 3 * k + i
-        if a >= 0:
-            vx[a] += ja[r, 0] * d[i] * im[a]
-            vy[a] += ja[r, 1] * d[i] * im[a]
-            om[a] += ja[r, 2] * d[i] * ii[a]
-        if b >= 0:
-            vx[b] += jb[r, 0] * d[i] * im[b]
-            vy[b] += jb[r, 1] * d[i] * im[b]
-            om[b] += jb[r, 2] * d[i] * ii[b]
+        di = d[i]
+        on_a = di != 0.0 and a >= 0
+        on_b = di != 0.0 and b >= 0
+        c0 = ja[r, 0]
+        c1 = ja[r, 1]
+        c2 = ja[r, 2]
+        ux = vx[ia]
+        uy = vy[ia]
+        uo = om[ia]
+        vx[ia] = ux + c0 * di * ima if on_a else ux
+        vy[ia] = uy + c1 * di * ima if on_a else uy
+        om[ia] = uo + c2 * di * iia if on_a else uo
+        c0 = jb[r, 0]
+        c1 = jb[r, 1]
+        c2 = jb[r, 2]
+        ux = vx[ib]
+        uy = vy[ib]
+        uo = om[ib]
+        vx[ib] = ux + c0 * di * imb if on_b else ux
+        vy[ib] = uy + c1 * di * imb if on_b else uy
+        om[ib] = uo + c2 * di * iib if on_b else uo
 
 
 @nb.njit(cache=True)
