@@ -309,26 +309,18 @@ def apply_impulse(k, ba, bb, ja, jb, d, im, ii, vx, vy, om):
     for i in range(3):
         r = 3 * k + i
         di = d[i]
-        on_a = di != 0.0 and a >= 0
-        on_b = di != 0.0 and b >= 0
-        c0 = ja[r, 0]
-        c1 = ja[r, 1]
-        c2 = ja[r, 2]
-        ux = vx[ia]
-        uy = vy[ia]
-        uo = om[ia]
-        vx[ia] = ux + c0 * di * ima if on_a else ux
-        vy[ia] = uy + c1 * di * ima if on_a else uy
-        om[ia] = uo + c2 * di * iia if on_a else uo
-        c0 = jb[r, 0]
-        c1 = jb[r, 1]
-        c2 = jb[r, 2]
-        ux = vx[ib]
-        uy = vy[ib]
-        uo = om[ib]
-        vx[ib] = ux + c0 * di * imb if on_b else ux
-        vy[ib] = uy + c1 * di * imb if on_b else uy
-        om[ib] = uo + c2 * di * iib if on_b else uo
+        cf = (ja[r, 0], ja[r, 1], ja[r, 2], jb[r, 0], jb[r, 1], jb[r, 2])
+        for s in range(2):  # body a, then body b
+            j = ia if s == 0 else ib
+            on = di != 0.0 and (a if s == 0 else b) >= 0
+            imj = ima if s == 0 else imb
+            iij = iia if s == 0 else iib
+            ux = vx[j]
+            uy = vy[j]
+            uo = om[j]
+            vx[j] = ux + cf[3 * s] * di * imj if on else ux
+            vy[j] = uy + cf[3 * s + 1] * di * imj if on else uy
+            om[j] = uo + cf[3 * s + 2] * di * iij if on else uo
 
 
 @nb.njit(cache=True)
