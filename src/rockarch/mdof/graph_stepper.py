@@ -38,24 +38,34 @@ PROJECT_SWEEPS = 1
 def _point(j, x, y, cs, sn, r0, r1):
     """World point of the body-fixed offset (r0, r1) (j < 0: a ground point) and the offset
     turned with the body (cs, sn: cos and sin of every body's rotation). Scalars, not a
-    slice of the offsets: a view per call cost a third of :func:`geometry`."""
+    slice of the offsets: a view per call cost a third of :func:`geometry`. The arrays are
+    read before the branch (the ground reads body 0 and drops it): an array read inside a
+    branch costs numba two atomic reference counts per call, more than the arithmetic."""
+    i = max(j, 0)
+    c = cs[i]
+    s = sn[i]
+    xj = x[i]
+    yj = y[i]
     if j < 0:
         return r0, r1, 0.0, 0.0
-    ox = cs[j] * r0 - sn[j] * r1
-    oy = sn[j] * r0 + cs[j] * r1
-    return x[j] + ox, y[j] + oy, ox, oy
+    ox = c * r0 - s * r1
+    oy = s * r0 + c * r1
+    return xj + ox, yj + oy, ox, oy
 
 
 @nb.njit(cache=True)
 def _rows(ja, jb, r, a, dx, dy, pbx, pby, obx, oby, x, y):
     """Jacobian row r of a contact direction d = (dx, dy) at B's point p_b (arm o_b from
-    B's centroid); body A's arm runs from its centroid to p_b (the exact gap gradient)."""
+    B's centroid); body A's arm runs from its centroid to p_b (the exact gap gradient).
+    (x, y read before the branch: :func:`_point`.)"""
     jb[r, 0] = dx
     jb[r, 1] = dy
     jb[r, 2] = obx * dy - oby * dx
+    xa = x[max(a, 0)]
+    ya = y[max(a, 0)]
     if a >= 0:
-        oax = pbx - x[a]
-        oay = pby - y[a]
+        oax = pbx - xa
+        oay = pby - ya
         ja[r, 0] = -dx
         ja[r, 1] = -dy
         ja[r, 2] = -(oax * dy - oay * dx)
@@ -63,10 +73,15 @@ def _rows(ja, jb, r, a, dx, dy, pbx, pby, obx, oby, x, y):
 
 @nb.njit(cache=True, inline="always")
 def _normal(k, a, cs, sn, n0):
-    """Joint k's normal, turned with body a (the ground's stays)."""
+    """Joint k's normal, turned with body a (the ground's stays; arrays read before the
+    branch: :func:`_point`)."""
+    c = cs[max(a, 0)]
+    s = sn[max(a, 0)]
+    n0x = n0[k, 0]
+    n0y = n0[k, 1]
     if a >= 0:
-        return cs[a] * n0[k, 0] - sn[a] * n0[k, 1], sn[a] * n0[k, 0] + cs[a] * n0[k, 1]
-    return n0[k, 0], n0[k, 1]
+        return c * n0x - s * n0y, s * n0x + c * n0y
+    return n0x, n0y
 
 
 @nb.njit(cache=True, inline="always")
@@ -191,21 +206,6 @@ def _outside(ex0, ey0, ex1, ey1, px, py):
 
 
 @nb.njit(cache=True)
-def _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
-    """True if a corner of joint k (b's point pb, a's point pa) no longer lies over the
-    other block's face: pb beyond the ends of a's face or pa beyond b's (the faces have
-    turned apart: a block tipped over an edge). A sliding joint's corners are the ends of
-    the faces' overlap (:func:`_sliding_joint`), which never are."""
-    a0x, a0y, _, _ = _point(a, x, y, cs, sn, fa[k, 0, 0], fa[k, 0, 1])
-    a1x, a1y, _, _ = _point(a, x, y, cs, sn, fa[k, 1, 0], fa[k, 1, 1])
-    if _outside(a0x, a0y, a1x, a1y, pbx, pby):
-        return True
-    b0x, b0y, _, _ = _point(b, x, y, cs, sn, fb[k, 0, 0], fb[k, 0, 1])
-    b1x, b1y, _, _ = _point(b, x, y, cs, sn, fb[k, 1, 0], fb[k, 1, 1])
-    return _outside(b0x, b0y, b1x, b1y, pax, pay)
-
-
-@nb.njit(cache=True)
 def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
     """Gaps (nj, 3: corner 0, corner 1, tangential offset at the corner in contact) and the
     Jacobian rows (3·nj, 3) w.r.t. bodies a and b; the rows are the exact gradients of the
@@ -224,6 +224,12 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
         nx, ny = _normal(k, a, cs, sn, n0)
         tx = -ny
         ty = nx
+        # the world ends of the joint's faces (in this function: a helper taking the arrays
+        # costs numba atomic reference counts per call, a fifth of this function)
+        a0x, a0y, _, _ = _point(a, x, y, cs, sn, fa[k, 0, 0], fa[k, 0, 1])
+        a1x, a1y, _, _ = _point(a, x, y, cs, sn, fa[k, 1, 0], fa[k, 1, 1])
+        b0x, b0y, _, _ = _point(b, x, y, cs, sn, fb[k, 0, 0], fb[k, 0, 1])
+        b1x, b1y, _, _ = _point(b, x, y, cs, sn, fb[k, 1, 0], fb[k, 1, 1])
         # the corners as built (every joint; redone below for one that slid)
         best = 0
         for cc in range(2):
@@ -232,8 +238,11 @@ def geometry(nj, ba, bb, x, y, ph, ra, rb, fa, fb, ftol, n0, mu, gap, ja, jb):
             dx = pbx - pax
             dy = pby - pay
             gap[k, cc] = nx * dx + ny * dy
-            if _off_face(k, a, b, x, y, cs, sn, fa, fb, pax, pay, pbx, pby):
-                gap[k, cc] = OFF_GAP  # the faces have turned apart here (a block tipped over)
+            # a corner no longer over the other block's face: b's point beyond the ends of
+            # a's face or a's beyond b's (the faces have turned apart: a block tipped over
+            # an edge; a sliding joint's corners, the ends of the faces' overlap, never are)
+            if _outside(a0x, a0y, a1x, a1y, pbx, pby) or _outside(b0x, b0y, b1x, b1y, pax, pay):
+                gap[k, cc] = OFF_GAP
             if cc == 1 and gap[k, 1] < gap[k, 0]:
                 best = 1
             _rows(ja, jb, 3 * k + cc, a, nx, ny, pbx, pby, obx, oby, x, y)
@@ -285,21 +294,33 @@ def solve3(a, r, out):
 
 @nb.njit(cache=True, inline="always")
 def apply_impulse(k, ba, bb, ja, jb, d, im, ii, vx, vy, om):
-    """Velocities += M⁻¹·J_kᵀ·d (d: impulse increments of the 3 rows of joint k)."""
+    """Velocities += M⁻¹·J_kᵀ·d (d: impulse increments of the 3 rows of joint k). No array
+    is read or written inside a branch (numba's atomic reference counts per call cost more
+    than the arithmetic): a side without a body, or a zero increment, writes back the
+    velocities it read (body 0's for the ground: unchanged)."""
     a = ba[k]
     b = bb[k]
+    ia = max(a, 0)
+    ib = max(b, 0)
+    ima = im[ia]
+    iia = ii[ia]
+    imb = im[ib]
+    iib = ii[ib]
     for i in range(3):
-        if d[i] == 0.0:
-            continue
         r = 3 * k + i
-        if a >= 0:
-            vx[a] += ja[r, 0] * d[i] * im[a]
-            vy[a] += ja[r, 1] * d[i] * im[a]
-            om[a] += ja[r, 2] * d[i] * ii[a]
-        if b >= 0:
-            vx[b] += jb[r, 0] * d[i] * im[b]
-            vy[b] += jb[r, 1] * d[i] * im[b]
-            om[b] += jb[r, 2] * d[i] * ii[b]
+        di = d[i]
+        cf = (ja[r, 0], ja[r, 1], ja[r, 2], jb[r, 0], jb[r, 1], jb[r, 2])
+        for s in range(2):  # body a, then body b
+            j = ia if s == 0 else ib
+            on = di != 0.0 and (a if s == 0 else b) >= 0
+            imj = ima if s == 0 else imb
+            iij = iia if s == 0 else iib
+            ux = vx[j]
+            uy = vy[j]
+            uo = om[j]
+            vx[j] = ux + cf[3 * s] * di * imj if on else ux
+            vy[j] = uy + cf[3 * s + 1] * di * imj if on else uy
+            om[j] = uo + cf[3 * s + 2] * di * iij if on else uo
 
 
 @nb.njit(cache=True)
@@ -480,15 +501,18 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, 
         sw.vf[3 * j] = vx[j]
         sw.vf[3 * j + 1] = vy[j]
         sw.vf[3 * j + 2] = om[j]
+    bias = ws.bias  # the work arrays named once (a field read in a branch of the loop
+    strike = ws.strike  # costs numba atomic reference counts per row)
+    vf = sw.vf
     for k in range(nj):
         for c in range(3):
             r = 3 * k + c
-            ws.bias[r] = 0.0
-            ws.strike[r] = False
+            bias[r] = 0.0
+            strike[r] = False
             if c < 2:
-                u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
-                ws.bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
-                ws.strike[r] = u < -v_app and ws.bias[r] == 0.0
+                u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, vf)
+                bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
+                strike[r] = u < -v_app and bias[r] == 0.0
     for i in range(ws.cnt[0]):
         r = 3 * nj + 2 * i
         u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
