@@ -161,7 +161,8 @@ def test_ida_of_an_mdof_arch_is_its_oas_boundary():
     m = ra.GroundMotion(m.t[:600], m.a[:600], "El Centro, first 6 s")
     sys_ = ra.system("mdof", shape="circular", rise_over_span=0.5, thickness_over_span=0.15,
                      blocks=8, t_free=2.0)
-    res = fr.ida(sys_, [m], 6.0, ratio=[1.0, 2.0, 4.0], tol=0.1)
+    # without the search below the boundary (Eq. (11.30a), on by default for assemblies)
+    res = fr.ida(sys_, [m], 6.0, ratio=[1.0, 2.0, 4.0], tol=0.1, search_step=0)
     ds = ra.oas(sys_, m, p=[6.0], ratio=[1.0, 2.0, 4.0], tol=0.1)
     assert np.isfinite(res.ratio_collapse[0])
     assert res.ratio_collapse[0] == ds["boundary"].values[0]
@@ -183,6 +184,34 @@ def test_the_default_scan_follows_the_structure():
     assert res.ratio.size == 81 and res.tol == 0.001
     res = fr.ida(col, [m], float(col.p_ref), ratio=[1.0, 3.0], tol=0.05)
     assert res.ratio.size == 2 and res.tol == 0.05
+
+
+def test_an_assembly_is_searched_below_a_collapse_only():
+    # MDOF (costly): the search of Eq. (11.30a) every 0.05 below the grid's first collapse,
+    # one value per thread at a time; a record safe on the whole grid is not searched
+    col = ra.system("mdof", column=[(0.2, 0.6)], t_free=0.5)
+    calls: list[int] = []
+
+    class Counting(type(col)):
+        def run(self, motion, p, ratio):
+            calls.append(int(np.size(ratio)))
+            return super().run(motion, p, ratio)
+
+    cnt = Counting(**{f.name: getattr(col, f.name) for f in dataclasses.fields(col)})
+    m = ra.pulse("sine", period=0.5)
+    res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 1.2], tol=0.05)
+    assert res.search_step == 0.05 and res.censored.all() and calls == [2]
+    calls.clear()
+    res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 5.0], tol=0.05)
+    grid_only = fr.ida(col, [m], float(col.p_ref), ratio=[1.0, 5.0], tol=0.05,
+                       search_step=0)
+    assert res.overturned[0].tolist() == [False, True]
+    # the search ran (batches of at most one value per numba thread) and its collapse
+    # point is never above the grid's bisected one
+    import numba
+
+    assert len(calls) > 1 and max(calls[1:]) <= max(numba.get_num_threads(), 1)
+    assert res.ratio_collapse[0] <= grid_only.ratio_collapse[0]
 
 
 def test_likelihood_gradient_matches_finite_differences():

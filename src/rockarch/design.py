@@ -163,7 +163,8 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
                   level: float = 0.95, pga: float | None = None,
                   probability: float | None = 0.1, g: float = G, executor=None,
                   store=None, progress: bool = False,
-                  log: Callable[[str], None] | None = None) -> SystemDesign:
+                  log: Callable[[str], None] | None = None,
+                  search_step: float | None = None) -> SystemDesign:
     """Largest safe PGA of any structure at a site (docs/theory.md Eqs. (11.34)–(11.35)).
 
     Parameters
@@ -184,7 +185,8 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
         0.01 for MDOF assemblies); n_bootstrap, level, pga, probability : as in
         :func:`rockarch.risk.fragility.design_summary`.
     executor, store, progress : as in :func:`rockarch.spectra.oas.compute_oas`.
-    log : one line per finished record of the IDA, as in :func:`rockarch.risk.fragility.ida`.
+    log, search_step : as in :func:`rockarch.risk.fragility.ida` (a line per stage; the
+        search for collapse islands below the grid's first collapse).
     """
     check_system(system, "system")
     if site is not None and not isinstance(site, xr.Dataset):
@@ -228,7 +230,7 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     names = getattr(records, "names", names)
     motions = getattr(records, "motions", records)
     res = fr.ida(system, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
-                 store=store, progress=progress, log=log)
+                 store=store, progress=progress, log=log, search_step=search_step)
     env, char = site_mod.curves(res.ratio_collapse, percentile)
     r, lower = _safe_ratio(env if curve == "envelope" else char, res.ratio[-1])
     note, summary = None, None

@@ -21,6 +21,7 @@ from rockarch.output.figures import save_figure
 from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.risk import fragility as fr
 from rockarch.risk.record_scan import (
+    MDOF_SEARCH_STEP,
     SEARCH_STEP,
     check_island_step,
     check_search_step,
@@ -33,8 +34,8 @@ Im = Enum("Im", {v: v for v in (*fr.IMS, "all")}, type=str)
 #: --search-step's help (fragility and design).
 SEARCH_HELP = (f"Search for collapse islands narrower than the grid below its first collapse, "
                f"every STEP of ap/ap,min from 1 (the first collapse is the lowest found). "
-               f"Default {SEARCH_STEP:g} for block, frame, sdof and fourhinge, 0 (off: the "
-               "grid alone) for mdof.")
+               f"Default {SEARCH_STEP:g} for block, frame, sdof and fourhinge, "
+               f"{MDOF_SEARCH_STEP:g} for mdof (below a collapse of the grid only); 0: off.")
 
 #: From this many records the IDA runs on local processes unless told otherwise: each
 #: record is one task (its scan and bisection), records in parallel across processes
@@ -239,8 +240,7 @@ def _print_table(frag: fr.Fragility) -> None:
     name = r.im if r.period is None else f"{r.im}(T = {r.period:g} s)"
     typer.echo(f"fragility of {r.system} at p = {r.p:g} 1/s over {len(r.records)} records "
                f"(IM = {name} [{unit}])")
-    typer.echo(f"scan: ap/ap,min = {r.ratio[0]:g} … {r.ratio[-1]:g} in {r.ratio.size} "
-               f"values, collapse points bisected to {r.tol:g}")
+    typer.echo(f"scan: {fr.scan_text(r.ratio, r.tol, r.search_step)}")
     typer.echo(f"{'record':<44} {'IM at collapse':>15} {'resurrections':>14}")
     for name, v, lim, n in zip(r.records, r.im_collapse, r.im_limit, r.resurrections,
                                strict=True):

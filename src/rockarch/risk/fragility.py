@@ -166,6 +166,13 @@ def count_resurrections(over: np.ndarray, ratio=None, collapse=None) -> np.ndarr
     return out
 
 
+def scan_text(ratio: np.ndarray, tol: float, search_step: float) -> str:
+    """The IDA scan in words (the CLI's output): grid, bisection, search."""
+    text = (f"ap/ap,min = {ratio[0]:g} … {ratio[-1]:g} in {ratio.size} values, collapse "
+            f"points bisected to {tol:g}")
+    return text + (f", searched every {search_step:g} below" if search_step > 0 else "")
+
+
 def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         im: str = "pga", period: float | None = None, ratio=None,
         tol: float | None = None, progress: bool = False, executor=None, store=None,
@@ -193,7 +200,8 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         collapse found from every s-th grid value, fewer simulations.
     search_step : step h of the search for collapse islands below the grid's first
         collapse (Eq. (11.30a), :class:`RecordScan`); None (default): 0.0025 for every
-        system but MDOF assemblies, 0 (the grid alone) for those; 0: no search.
+        system but MDOF assemblies, 0.05 for those (below a collapse of the grid only);
+        0: no search.
     log : called with a line per stage (the structure and the scan, when the IDA starts;
         each record, when it is done), e.g. ``print`` where no progress bar is shown.
     """
@@ -220,8 +228,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     if log is not None:
         log(f"structure {system.name}: p = {p:.4g} 1/s, ap,min = "
             f"{float(system.ap_min):.4g} m/s²")
-        log(f"IDA: {len(motions)} record(s), ap/ap,min = {ratio[0]:g} … {ratio[-1]:g} in "
-            f"{ratio.size} values, collapse points bisected to {tol:g}")
+        log(f"IDA: {len(motions)} record(s), {scan_text(ratio, tol, search_step)}")
     task_ratio = np.append(ratio, np.nan)
     # one task per record, the longest records first (they finish last otherwise); each
     # record is stored under its own key as it finishes (resumable, and reused by any

@@ -36,19 +36,28 @@ SEARCH_BATCH = 16
 #: grid of ``rockarch oas``.
 SCAN_STEPS = 81
 #: The IDA scan of MDOF assemblies: values and bisection tolerance. A simulation of an
-#: assembly costs seconds, and a record that never collapses runs every value to its end;
-#: the price is collapse islands narrower than the step (0.25) that the scan misses:
-#: docs/mdof.md, "The IDA scan of assemblies", measures it.
+#: assembly costs seconds, and a record that never collapses runs every value to its end
+#: (docs/mdof.md, "The IDA scan of assemblies").
 MDOF_SCAN = (17, 0.01)
+#: The search step of MDOF assemblies: that of the block's grid (0.05), run below a
+#: collapse of their coarser grid only (Eq. (11.30a)), so that their collapse points are
+#: those of the 81-value scan (docs/mdof.md measures it).
+MDOF_SEARCH_STEP = 0.05
+
+
+def costly(system) -> bool:
+    """Whether a simulation of ``system`` costs seconds (MDOF assemblies) rather than
+    ~0.2 ms (the SDOF kernels: block, frame, sdof, fourhinge)."""
+    from rockarch.systems import MDOFSystem
+
+    return isinstance(system, MDOFSystem)
 
 
 def default_scan(system) -> tuple[int, float]:
     """(values, bisection tolerance) of the IDA scan of ``system`` when none is given:
     :data:`SCAN_STEPS` and ``OAS_TOL`` for the SDOF kinds, :data:`MDOF_SCAN` for MDOF
     assemblies (Eq. (11.30))."""
-    from rockarch.systems import MDOFSystem
-
-    return MDOF_SCAN if isinstance(system, MDOFSystem) else (SCAN_STEPS, OAS_TOL)
+    return MDOF_SCAN if costly(system) else (SCAN_STEPS, OAS_TOL)
 
 
 def check_search_step(step) -> float:
@@ -66,11 +75,9 @@ def check_search_step(step) -> float:
 
 def default_search_step(system) -> float:
     """:data:`SEARCH_STEP` for systems simulated by an SDOF kernel (block, frame, sdof,
-    fourhinge: ~0.2 ms a simulation), 0 (no search) for MDOF assemblies (~1 s a
-    simulation: a search would cost hundreds per record)."""
-    from rockarch.systems import MDOFSystem
-
-    return 0.0 if isinstance(system, MDOFSystem) else SEARCH_STEP
+    fourhinge: ~0.2 ms a simulation), :data:`MDOF_SEARCH_STEP` for MDOF assemblies (~1 s a
+    simulation; searched below a collapse only, :class:`RecordScan`)."""
+    return MDOF_SEARCH_STEP if costly(system) else SEARCH_STEP
 
 
 def check_island_step(step) -> int:
@@ -135,7 +142,10 @@ class RecordScan:
     between the last safe value of the search and that collapse. So the collapse point is
     never above b, and equals it when the search finds nothing below. An island narrower
     than h that falls between two values of the search is missed. h = 0: the grid alone
-    (the collapse point is b, bit for bit).
+    (the collapse point is b, bit for bit). For a :func:`costly` system (MDOF) the search
+    runs below a collapse of the grid only (a record safe on the whole grid stays
+    censored: its search would run every value to the end of the record), one value per
+    numba thread at a time.
     """
 
     system: object
@@ -178,7 +188,8 @@ class RecordScan:
         grid[0] + k·h below it and the value before it (safe), or None (no search, or no
         collapse found below the boundary)."""
         h = float(self.search_step)
-        if h <= 0 or grid.size == 0:
+        expensive = costly(self.system)
+        if h <= 0 or grid.size == 0 or (expensive and not np.isfinite(boundary)):
             return None
         c = int(over.argmax()) if over.any() else grid.size
         top = boundary if np.isfinite(boundary) else grid[-1]
@@ -191,7 +202,7 @@ class RecordScan:
         values = np.setdiff1d(values, safe)
         import numba
 
-        batch = SEARCH_BATCH * max(numba.get_num_threads(), 1)
+        batch = (1 if expensive else SEARCH_BATCH) * max(numba.get_num_threads(), 1)
         for i in range(0, values.size, batch):
             chunk = values[i:i + batch]
             o, _ = self.system.run(motion, np.full(chunk.size, self.p), chunk)
