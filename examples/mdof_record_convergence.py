@@ -83,7 +83,9 @@ def fragility_table(hs: tuple[float, ...], n_records: int = 10) -> None:
     for h in hs:
         sys_ = ra.system("mdof", **ARCH, h_factor=h)
         t0 = time.perf_counter()
-        res = fr.ida(sys_, motions, sys_.p_ref, ratio=IDA_RATIO, tol=IDA_TOL)
+        # the grid alone, as measured in docs/mdof.md (the scan is held fixed; the
+        # default search of assemblies below a collapse came later)
+        res = fr.ida(sys_, motions, sys_.p_ref, ratio=IDA_RATIO, tol=IDA_TOL, search_step=0)
         secs = time.perf_counter() - t0
         fit = fr.fit_ida(res, n_bootstrap=0).fit
         rc = res.ratio_collapse
