@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 import numba as nb
+import numpy as np
 
 KD = 5  # half-bandwidth of W (3 rows per joint, neighbouring joints share one body)
 _MAX_PIVOTS = 200
@@ -24,32 +25,53 @@ TOL_LCP = 1e-7
 
 @nb.njit(cache=True, inline="always")
 def _band_solve(n, kb, rhs, lb, out, kd):
-    """:func:`band_solve` for half-bandwidth kd (inlined: a constant kd is unrolled)."""
+    """:func:`band_solve` for half-bandwidth kd (inlined: a constant kd is unrolled). The
+    rows with a full band (i ≥ kd, all but the first kd) run loops of constant length
+    (kd − d terms), which the compiler unrolls into straight code, and the arrays are
+    indexed with unsigned indices (no test for a negative index wrapping around): the same
+    arithmetic in the same order as the plain loops of the first rows."""
     for i in range(n):
+        iu = np.uint64(i)
         for d in range(kd, -1, -1):
             j = i - d
             if j < 0:
                 continue
-            s = kb[i, d]
-            k0 = max(0, i - kd)
-            for k in range(k0, j):
-                s -= lb[i, i - k] * lb[j, j - k]
+            ju = np.uint64(j)
+            s = kb[iu, np.uint64(d)]
+            if i >= kd:  # a full row of the band: constant trip counts (unrolled)
+                for e in range(kd - d):  # k = i − kd + e, ascending as below
+                    s -= lb[iu, np.uint64(kd - e)] * lb[ju, np.uint64(kd - d - e)]
+            else:
+                for k in range(j):
+                    s -= lb[iu, np.uint64(i - k)] * lb[ju, np.uint64(j - k)]
             if d == 0:
                 if s <= 0.0:
                     return False
-                lb[i, 0] = math.sqrt(s)
+                lb[iu, np.uint64(0)] = math.sqrt(s)
             else:
-                lb[i, d] = s / lb[j, 0]
+                lb[iu, np.uint64(d)] = s / lb[ju, np.uint64(0)]
     for i in range(n):
-        s = rhs[i]
-        for k in range(max(0, i - kd), i):
-            s -= lb[i, i - k] * out[k]
-        out[i] = s / lb[i, 0]
+        iu = np.uint64(i)
+        s = rhs[iu]
+        if i >= kd:
+            for e in range(kd):
+                s -= lb[iu, np.uint64(kd - e)] * out[np.uint64(i - kd + e)]
+        else:
+            for k in range(i):
+                s -= lb[iu, np.uint64(i - k)] * out[np.uint64(k)]
+        out[iu] = s / lb[iu, np.uint64(0)]
     for i in range(n - 1, -1, -1):
-        s = out[i]
-        for k in range(i + 1, min(n, i + kd + 1)):
-            s -= lb[k, k - i] * out[k]
-        out[i] = s / lb[i, 0]
+        iu = np.uint64(i)
+        s = out[iu]
+        if i + kd < n:
+            for e in range(1, kd + 1):
+                ku = np.uint64(i + e)
+                s -= lb[ku, np.uint64(e)] * out[ku]
+        else:
+            for k in range(i + 1, n):
+                ku = np.uint64(k)
+                s -= lb[ku, np.uint64(k - i)] * out[ku]
+        out[iu] = s / lb[iu, np.uint64(0)]
     return True
 
 
