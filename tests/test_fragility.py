@@ -199,7 +199,10 @@ def test_an_assembly_is_searched_below_a_collapse_only():
 
     cnt = Counting(**{f.name: getattr(col, f.name) for f in dataclasses.fields(col)})
     m = ra.pulse("sine", period=0.5)
-    res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 1.2], tol=0.05)
+    # this pulse overturns the column from ap/ap,min ≈ 1.34 on (every value above it up to
+    # 6 collapses, a scan every 0.1 with bisection): 1.1 is safe with an 18 % margin, 5 far
+    # inside the collapse region, so both verdicts hold on any machine
+    res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 1.1], tol=0.05)
     assert res.search_step == 0.05 and res.censored.all() and calls == [2]
     calls.clear()
     res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 5.0], tol=0.05)
