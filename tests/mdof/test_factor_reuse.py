@@ -23,10 +23,9 @@ def test_sliding_wall_reuses_the_factors_and_solves_as_fresh_ones():
     # solver's tolerance tol_u at the current Jacobian, so their velocities agree within tol_u
     # (measured: 0.08·tol_u), while the kept factors save most factorisations. Counted on the
     # steps the plain semismooth method solves (the proximal continuation of Eq. (9.9), which
-    # refactorises at every change of its weight, solves 28 of the 200 here, where more than
-    # 100 rows change states; 10 when it stopped at tol_u): measured 16 factorisations in
-    # 172 steps with the factors kept, 361 with them discarded (16 and 378 in 190 when it
-    # stopped at tol_u); asserted: fewer than half, and fewer than one per step
+    # refactorises at every change of its weight, solves 10 of the 200 here): measured 16
+    # factorisations in 190 steps with the factors kept, 378 with them discarded; asserted:
+    # fewer than half, and fewer than one per step
     m = graph_model(bd.wall(4, 10, 0.4, 0.2, mu=0.6))
     h = 1e-3
     keep = gs.make_work(m, 1.0, m.contact_cap)

@@ -58,15 +58,13 @@ PROX_MAX = 200
 #: tol_u (docs/theory.md Eq. (9.9)), or below this many times tol_u (10⁻⁴·g·h, the speed
 #: below which the engine calls a structure at rest, ``graph_run.REST_SPEED``) ...
 PROX_TOL = 100.0
-#: ... where the plain iterations changed the states of more than this many rows: an impact
-#: running through a wall (the 205-block wall's violent steps took 4.3 times the
-#: factorisations at tol_u, docs/performance.md). Smaller changes (chains, arches) keep
-#: tol_u: a slip faster than tol_u counts as sliding (a μ = 1000 joint would slide at
-#: 100·tol_u), and their histories stay those of the stricter solve. (A wall sliding on all
-#: its bed joints at once is warmed up worse after a looser step: 28 of the 200 steps of
-#: tests/mdof/test_factor_reuse.py need the continuation, 10 at tol_u; under El Centro the
-#: 42-block wall runs as fast either way.)
-PROX_ROWS = 100
+#: ... in a problem of more than this many rows (~330 joints: walls of ~200 blocks), whose
+#: violent steps took 4.3 times the factorisations at tol_u (docs/performance.md). Smaller
+#: problems keep tol_u: at 100·tol_u a slip faster than tol_u counts as sliding (a μ = 1000
+#: joint slid), a wall sliding on all its bed joints is warmed up worse after a looser step
+#: (28 of the 200 steps of tests/mdof/test_factor_reuse.py need the continuation, 10 at
+#: tol_u), and their histories stay those of the stricter solve.
+PROX_ROWS = 1000
 #: Factor by which the proximal weight ρ falls after a proximal step that settled at once...
 PROX_DROP = 10.0
 #: ... and rises after one that did not.
@@ -626,10 +624,10 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     and b' = b − ρ·Λ_k, whose solution is the impulse closest to the last one Λ_k in the
     weight ρ. For ρ of the order of W's diagonal they are diagonally dominant and settle in a
     few iterations; Λ_k ← Λ, and ρ falls by ``PROX_DROP`` after a proximal step that settled
-    at once (rises by ``PROX_UP`` after one that did not), until ρ·|Λ − Λ_k| ≤ tol_u, or ≤
-    ``PROX_TOL``·tol_u where the plain iterations changed the states of more than
-    ``PROX_ROWS`` rows: the proximal term, the residual of the original contact law in the
-    rows' velocities, is then below that tolerance and Λ solves the original problem to it.
+    at once (rises by ``PROX_UP`` after one that did not), until ρ·|Λ − Λ_k| ≤ tol_u (≤
+    ``PROX_TOL``·tol_u in a problem of more than ``PROX_ROWS`` rows): the proximal term, the
+    residual of the original contact law in the rows' velocities, is then below that
+    tolerance and Λ solves the original problem to it.
     Returns the semismooth iterations (negative: failed)."""
     if sw.state[1] <= REFINE_KD:
         sw.state[0] = 0  # a narrow band: refactorised at the step's Jacobian (REFINE_KD)
@@ -648,14 +646,11 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     total = SSN_FIRST
     sw.state[7] += 1
     rho = 0.0
-    moved = 0  # rows whose states the plain iterations changed
     for r in range(n_rows):
         rho = max(rho, _wrr(r, rba, rbb, ja, jb, sw))
         lam[r] = lamk[r]
-        if st[r] != sst2[r]:
-            moved += 1
         st[r] = sst2[r]
-    tol_prox = (PROX_TOL if moved > PROX_ROWS else 1.0) * tol_u
+    tol_prox = (PROX_TOL if n_rows > PROX_ROWS else 1.0) * tol_u
     for _ in range(PROX_MAX):
         for r in range(n_rows):
             bias2[r] = bias[r] - rho * lamk[r]
