@@ -62,7 +62,7 @@ PROX_TOL = 100.0
 #: violent steps took 4.3 times the factorisations at tol_u (docs/performance.md). Smaller
 #: problems keep tol_u: at 100·tol_u a slip faster than tol_u counts as sliding (a μ = 1000
 #: joint slid), a wall sliding on all its bed joints is warmed up worse after a looser step
-#: (28 of the 200 steps of tests/mdof/test_factor_reuse.py need the continuation, 10 at
+#: (27 of the 200 steps of tests/mdof/test_factor_reuse.py need the continuation, 10 at
 #: tol_u), and their histories stay those of the stricter solve.
 PROX_ROWS = 1000
 #: Factor by which the proximal weight ρ falls after a proximal step that settled at once...
