@@ -108,7 +108,7 @@ def time_history(python: str) -> None:
     """A 0.4 x 1 m block (mu 0.6) under a one-cycle sine pulse of 1.5 B/H·g, T = 0.5 s."""
     a = bd.from_polygons([RECT], mu=0.6)
     for ratio in (1.5, 3.0):
-        gm = pulse("sine", period=0.5, ap=ratio * a.ap_min, cycles=1)
+        gm = pulse("sine", period=0.5, ap=ratio * a.ap_min)
         r = simulate(a, gm, t_free=1.5)
         th = np.abs(r.q[:, 0, 2]).max()
         t = np.asarray(gm.t, float)
