@@ -482,11 +482,10 @@ def find_contacts(m, ws, x, y, ph, margin):
 
 
 @nb.njit(cache=True)
-def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, tol_l, margin, ws):
-    """Geometry at (x, y, ph) (the joints and the point contacts within ``margin``), then
-    the exact contact solve of the step (:func:`rockarch.mdof.contact_solver.coulomb`) for
-    the free velocities (vx, vy, om), which are turned into v⁺ in place. Warm start: the
-    last impulses in ws.lam. Returns the solver's Newton iterations (negative: failed)."""
+def contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws):
+    """The rows of the step's contact problem: geometry at (x, y, ph) (the joints and the
+    point contacts within ``margin``), the free velocities (vx, vy, om) in ws.sw.vf and the
+    rows' biases (docs/theory.md Eq. (6.3a)) in ws.bias. Returns the number of rows."""
     nj = m.n0.shape[0]
     nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
@@ -520,6 +519,18 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, 
         ws.strike[r] = u < -v_app and ws.bias[r] == 0.0
         ws.bias[r + 1] = 0.0
         ws.strike[r + 1] = False
+    return nrows
+
+
+@nb.njit(cache=True)
+def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, tol_l, margin, ws):
+    """The rows of the step (:func:`contact_rows`), then the exact contact solve of the step
+    (:func:`rockarch.mdof.contact_solver.solve`) for the free velocities (vx, vy, om), which
+    are turned into v⁺ in place. Warm start: the last impulses in ws.lam. Returns the
+    solver's Newton iterations (negative: failed)."""
+    nbod = m.mass.shape[0]
+    nrows = contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws)
+    sw = ws.sw
     its = solve(nbod, nrows, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0, ws.tn1,
                 ws.tmu, eps_n, eps_t, sw, tol_u, tol_l, ws.lref[0])
     for j in range(nbod):
