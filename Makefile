@@ -59,7 +59,11 @@ test-oldest: | $(BIN)/python
 	.venv-oldest/bin/python -m pip install --quiet --no-deps -e .
 	ROCKARCH_JIT_CACHE=.venv-oldest/jit .venv-oldest/bin/python -m pytest -q -m "not slow"
 
+# benchmarks/qp_libraries.py and lu_choice.py measure libraries the engine does not use
+# (docs/performance.md); they skip one that could not be installed.
 bench: $(VENV)/.installed
+	-$(BIN)/python -m pip install --quiet "clarabel==0.11.1" "osqp==1.1.3" "proxsuite==0.8.0" \
+		"qdldl==0.1.9.post1" || echo "bench: could not install the QP libraries (no network?)"
 	for f in benchmarks/*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
 
 # Bit-identical guard for refactors, on this machine only (benchmarks/golden.py).

@@ -12,9 +12,14 @@ matrices, by
 on matrices of H's size, half-bandwidth (that of the engine's body order for two walls:
 42 blocks, 4 courses of 10, and 210 blocks, 20 courses of 10, of 0.4 x 0.2 m) and scale
 (a unit mass diagonal plus 100 times the rows' outer products, a small non-symmetric
-part).
+part). A second table takes H where no joint slides (symmetric) with the walls' own
+pattern (three rows per joint on the unknowns of its two bodies, in the engine's body order)
+and adds the symmetric factorisations: LAPACK's banded Cholesky
+(``scipy.linalg.solveh_banded``, pbsv) and QDLDL (the LDLᵀ of OSQP, with its AMD order;
+``qdldl.Solver`` anew, and ``update``, which keeps the symbolic analysis of the same
+pattern), where the ``qdldl`` package is installed (``make bench`` installs it).
 
-    .venv/bin/python benchmarks/lu_choice.py      # ~20 s
+    .venv/bin/python benchmarks/lu_choice.py      # ~30 s
 """
 
 from __future__ import annotations
@@ -54,6 +59,22 @@ def to_band(a: np.ndarray, kd: int) -> np.ndarray:
     return b
 
 
+def band_solver(a: np.ndarray, kd: int, x: np.ndarray):
+    """rockarch's band LU and solve of a·y = x, as a function of nothing (to be timed)."""
+    n = a.shape[0]
+    band = to_band(a, kd)
+    row = np.zeros(kd + 1)
+
+    def ours():
+        f = band.copy()
+        band_lu(n, f, kd, row)
+        y = x.copy()
+        band_lu_solve(n, f, kd, y)
+        return y
+
+    return ours
+
+
 def best(fn, reps: int) -> float:
     out = []
     for _ in range(reps):
@@ -72,15 +93,7 @@ def one_wall(courses: int, cols: int, rng) -> str:
     n = 3 * w.n_blocks
     a = banded_matrix(n, kd, rng)
     x = rng.normal(size=n)
-    band = to_band(a, kd)
-    row = np.zeros(kd + 1)
-
-    def ours():
-        f = band.copy()
-        band_lu(n, f, kd, row)
-        y = x.copy()
-        band_lu_solve(n, f, kd, y)
-        return y
+    ours = band_solver(a, kd, x)
 
     ab = np.zeros((2 * kd + 1, n))
     for i in range(n):
@@ -104,6 +117,64 @@ def one_wall(courses: int, cols: int, rng) -> str:
             f"| {diff:.1e} |")
 
 
+def wall_matrix(w, pos: np.ndarray, rng) -> np.ndarray:
+    """H = M + 100·Σ rowᵀrow of a wall where no joint slides: three random rows per joint on
+    the unknowns of its two bodies, the bodies at their places ``pos`` of the body order."""
+    n = 3 * w.n_blocks
+    a = np.diag(rng.uniform(1.0, 2.0, n))
+    for ba, bb in zip(w.body_a, w.body_b, strict=True):
+        idx = np.array([3 * pos[b] + c for b in (ba, bb) if b >= 0 for c in range(3)])
+        for _ in range(3):
+            row = rng.normal(size=idx.size)
+            a[np.ix_(idx, idx)] += 1e2 * np.outer(row, row)
+    return a
+
+
+def one_wall_symmetric(courses: int, cols: int, rng) -> str:
+    """The row of the second table: H of the wall's pattern, symmetric."""
+    from rockarch.mdof.kernel_data import graph_model
+
+    w = bd.wall(courses, cols, 0.4, 0.2, mu=0.6)
+    gm = graph_model(w)
+    kd = int(gm.kbody)
+    n = 3 * w.n_blocks
+    a = wall_matrix(w, gm.bpos, rng)
+    x = rng.normal(size=n)
+    ours = band_solver(a, kd, x)
+
+    upper = np.zeros((kd + 1, n))  # the upper band, as solveh_banded wants it
+    for j in range(n):
+        for i in range(max(0, j - kd), j + 1):
+            upper[kd + i - j, j] = a[i, j]
+
+    def pbsv():
+        return sla.solveh_banded(upper, x, check_finite=False)
+
+    fns = [ours, pbsv]
+    try:
+        import qdldl
+    except ImportError:
+        qdldl = None
+    if qdldl is not None:
+        csc = sp.csc_matrix(a)
+        kept = qdldl.Solver(csc)
+
+        def ldl_new():
+            return qdldl.Solver(csc).solve(x)
+
+        def ldl_update():
+            kept.update(csc)
+            return kept.solve(x)
+
+        fns += [ldl_new, ldl_update]
+    ours()
+    ys = [f() for f in fns]
+    diff = max(np.abs(ys[0] - y).max() for y in ys[1:]) / np.abs(ys[1]).max()
+    reps = 200 if n < 300 else 50
+    t = [f"{1e6 * best(f, reps):.0f}" for f in fns] + ["not installed"] * (4 - len(fns))
+    return f"| wall {courses} x {cols} | {n} | {kd} | {' | '.join(t)} | {diff:.1e} |"
+
+
 def main() -> None:
     rng = np.random.default_rng(0)
     print("| matrix | unknowns | half-bandwidth | rockarch band LU [µs] | LAPACK gbsv [µs] "
@@ -111,6 +182,12 @@ def main() -> None:
     print("|---|---|---|---|---|---|---|")
     for courses, cols in ((4, 10), (20, 10)):
         print(one_wall(courses, cols, rng), flush=True)
+    print("\nsymmetric (no joint sliding), the walls' own pattern:")
+    print("| matrix | unknowns | half-bandwidth | rockarch band LU [µs] | LAPACK pbsv [µs] "
+          "| QDLDL anew [µs] | QDLDL update [µs] | largest difference of the solutions |")
+    print("|---|---|---|---|---|---|---|---|")
+    for courses, cols in ((4, 10), (20, 10)):
+        print(one_wall_symmetric(courses, cols, rng), flush=True)
 
 
 if __name__ == "__main__":
