@@ -57,6 +57,7 @@ from rockarch.mdof.kinematics import (
     rest_under_gravity,
     step_end,
     step_start,
+    strikes,
     tally,
     triple,
 )
@@ -213,7 +214,7 @@ def _contact_step(nbod, nj, x, y, ph, vfx, vfy, vfo, rl, rr, n0, im, ii, gtol, h
         c = r - 3 * k
         # a corner in contact, striking or speculative (Eq. 6.3a)
         bias[r] = normal_bias(gap[k, c], u, gtol, hh, v_app) if c < 2 else 0.0
-        strike[r] = c < 2 and u < -v_app and bias[r] == 0.0
+        strike[r] = c < 2 and strikes(u, bias[r], v_app)
         ufree[r] = u + bias[r]
     # every corner is a (speculative) contact; the no-slip row is bilateral and always on
     # (the model has no sliding: an open joint stays hinged at its corner)

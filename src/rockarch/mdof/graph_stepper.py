@@ -27,7 +27,7 @@ import numpy as np
 from rockarch.mdof.collision import detect, local_normals, world
 from rockarch.mdof.contact_solver import SolverWork, make_solver_work, row_dot, solve
 from rockarch.mdof.kernel_data import SLIDE_TOL
-from rockarch.mdof.kinematics import normal_bias
+from rockarch.mdof.kinematics import normal_bias, strikes
 
 #: Gauss–Seidel sweeps of the position projection per step (a stabilisation: the remaining
 #: error is corrected in the next steps).
@@ -511,12 +511,12 @@ def contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws):
             if c < 2:
                 u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, vf)
                 bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
-                strike[r] = u < -v_app and bias[r] == 0.0
+                strike[r] = strikes(u, bias[r], v_app)
     for i in range(ws.cnt[0]):
         r = 3 * nj + 2 * i
         u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
         ws.bias[r] = normal_bias(ws.cgap[i], u, gtol, hh, v_app)
-        ws.strike[r] = u < -v_app and ws.bias[r] == 0.0
+        ws.strike[r] = strikes(u, ws.bias[r], v_app)
         ws.bias[r + 1] = 0.0
         ws.strike[r + 1] = False
     return nrows

@@ -48,6 +48,13 @@ def normal_bias(gap, u, gtol, hh, v_app):
     return gap / hh if gap > gtol else 0.0
 
 
+@nb.njit(cache=True, inline="always")
+def strikes(u, bias, v_app):
+    """Whether a corner strikes in this step (docs/theory.md Eq. (6.3a)): it approaches
+    faster than ``v_app`` and its bias (:func:`normal_bias`) puts it in contact now."""
+    return u < -v_app and bias == 0.0
+
+
 @nb.njit(cache=True)
 def advance(x, y, ph, vx, vy, om, dt, xo, yo, pho):
     """Exact rigid motion over dt with a constant spatial twist (rotation about the fixed
