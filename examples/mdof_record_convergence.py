@@ -14,6 +14,8 @@ own ap,min and p, as `rockarch oas --system mdof`) at h·p = 0.005 (the default)
 runs part 1 with μ = 0.5 at every joint (the general stepper) on a
 smaller grid (6 × 6 cells, El Centro 180 only; ≈ 2 min more). ``--h-factors`` sets the
 three steps (``--h-factors 0.0025,0.00125,0.000625``: the next halvings, ≈ 25 min).
+``--cells N`` draws the maps of part 1 with N × N cells (12 by default; the run time of
+part 1 grows as N²).
 
 Run:  .venv/bin/python examples/mdof_record_convergence.py      (≈ 7 min on 2 cores)
 
@@ -33,8 +35,7 @@ from rockarch.motion.synthetic import synthetic_motions
 from rockarch.risk import fragility as fr
 
 ARCH = {"shape": "catenary", "span": 10.0, "rise": 3.0, "thickness": 0.25, "blocks": 20}
-P = np.linspace(0.5, 10.0, 12)
-RATIO = np.linspace(1.0, 4.0, 12)
+CELLS = 12  # the maps of part 1: CELLS p × CELLS ratios
 IDA_RATIO = np.linspace(1.0, 5.0, 17)  # IDA scan grid, then bisection to IDA_TOL
 IDA_TOL = 0.01
 
@@ -106,6 +107,8 @@ def main() -> None:
                     help="also the OAS with friction 0.5 (6 × 6 cells, El Centro 180)")
     ap.add_argument("--skip-fragility", action="store_true")
     ap.add_argument("--skip-oas", action="store_true")
+    ap.add_argument("--cells", type=int, default=CELLS,
+                    help="the maps of part 1: N p × N ratios (default 12)")
     ap.add_argument("--records", type=int, default=10,
                     help="synthetic records of part 2 (seed 0; the first 10 are the default's)")
     args = ap.parse_args()
@@ -114,7 +117,8 @@ def main() -> None:
         raise SystemExit("error: --h-factors needs three values")
     t0 = time.perf_counter()
     if not args.skip_oas:
-        oas_table(hs, P, RATIO, (180, 270), None)
+        oas_table(hs, np.linspace(0.5, 10.0, args.cells), np.linspace(1.0, 4.0, args.cells),
+                  (180, 270), None)
     if not args.skip_fragility:
         fragility_table(hs, args.records)
     if args.friction:
