@@ -7,9 +7,11 @@ steps are run by the Python version of the run loop (``graph_run.run.py_func``) 
 compiled step, so that every step's banded LU factorisations (the solver's counter) and CPU
 time are read. Prints the steps solved, those that needed the proximal continuation
 (docs/theory.md Eq. (9.9)), the factorisations and how they spread over the steps, the
-failed steps and the CPU seconds of the solved steps. To compare with an earlier version of
-the solver, run the same command from a git worktree of that commit (``PYTHONPATH`` set to
-its ``src``).
+failed steps, the residual of the contact law at the impulses of the steps that needed the
+continuation (``contact_solver.law_residual``: the natural residual of Eqs. (9.1)–(9.3)
+with ε, in velocity, against the continuation's tolerance) and the CPU seconds of the
+solved steps. To compare with an earlier version of the solver, run the same command from
+a git worktree of that commit (``PYTHONPATH`` set to its ``src``).
 
     .venv/bin/python benchmarks/hard_steps.py       # ~1 min
 """
@@ -25,6 +27,7 @@ import rockarch as ra
 from rockarch.core.constants import GAP_TOL, MDOF_H_FACTOR
 from rockarch.mdof import graph_run as gr
 from rockarch.mdof import graph_stepper as gs
+from rockarch.mdof.contact_solver import PROX_TOL, law_residual
 from rockarch.mdof.kernel_data import graph_model
 from rockarch.motion.signals import GroundMotion
 
@@ -42,6 +45,7 @@ def main() -> None:
                                                                   / rec.pga)
     step = gs.contact_step
     log = []
+    residuals = []
 
     def counted(*args_):
         ws = args_[-1]
@@ -49,6 +53,12 @@ def main() -> None:
         t0 = time.process_time()
         its = step(*args_)
         log.append((its, ws.sw.state[2] - f0, ws.sw.state[7] - p0, time.process_time() - t0))
+        if ws.sw.state[7] > p0:  # the law's residual where the continuation ran
+            nr = 3 * m.n0.shape[0] + 2 * ws.cnt[0]
+            v = np.column_stack([args_[4], args_[5], args_[6]]).ravel()
+            res = law_residual(nr, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0,
+                               ws.tn1, ws.tmu, args_[10], args_[11], ws.sw.mdiag, v)
+            residuals.append((its < 0, res / args_[12]))
         return its
 
     h = MDOF_H_FACTOR / a.p_ref
@@ -73,6 +83,14 @@ def main() -> None:
           f"{np.sort(nf)[::-1][:max(len(nf) // 10, 1)].sum() / max(nf.sum(), 1):.0%}; "
           f"CPU {arr[:, 3].sum():.1f} s in the solved steps "
           f"({1e3 * arr[:, 3].sum() / max(nf.sum(), 1):.2f} ms per factorisation)")
+    res = np.array(residuals).reshape(-1, 2)
+    for label, sel in (("solved", res[:, 0] == 0), ("failed", res[:, 0] == 1)):
+        if sel.any():
+            r = res[sel, 1]
+            print(f"the contact law's residual at the impulses of the {int(sel.sum())} {label} "
+                  f"steps with the continuation: median {np.median(r):.3g}, largest "
+                  f"{r.max():.3g} times tol_u, above {PROX_TOL:g} times tol_u (the "
+                  f"continuation's tolerance on this wall) in {int((r > PROX_TOL).sum())}")
 
 
 if __name__ == "__main__":

@@ -504,10 +504,13 @@ def _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, 
 
 
 @nb.njit(cache=True)
-def _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l, it):
+def _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l, it, prox):
     """New states from the impulses and velocities (with hysteresis: a state changes only
-    when it is violated by more than the tolerance). Returns whether any changed."""
+    when it is violated by more than the tolerance). In a proximal step (``prox``) a
+    sliding row's direction is that of its proximal velocity u + (ε + ρ)·Λ_t (docs/theory.md
+    Eq. (9.9)). Returns whether any changed."""
     changed = False
+    ie = sw.ie
     for r in range(n_rows):
         if tn0[r] < 0:
             s = st[r]
@@ -539,7 +542,7 @@ def _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l, it):
                     s = -1
             elif s == 2:
                 s = 0
-            elif s * sw.u[r] > tol_u:
+            elif s * (sw.u[r] + (lam[r] / ie[r] if prox else 0.0)) > tol_u:
                 s = 0
         if s != st[r]:
             st[r] = s
@@ -595,7 +598,7 @@ def semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol
     for it in range(max_it):
         sw.state[6] += 1
         changed = _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l,
-                                it if key == 0.0 else SSN_FREEZE)
+                                it if key == 0.0 else SSN_FREEZE, key != 0.0)
         if it > 0 and not changed:
             return it
         if not _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, sw.ie, sw,
@@ -688,6 +691,37 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     for i in range(3 * nbod):
         sw.v[i] = sw.vf[i] + sw.g[i] / sw.mdiag[i]
     return -1 - total
+
+
+@nb.njit(cache=True)
+def law_residual(n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t, mdiag, v):
+    """The largest natural residual of the step's contact law (docs/theory.md Eqs.
+    (9.1)–(9.3) with the regularisation ε) at the impulses ``lam`` and velocities ``v`` [m/s]:
+    |min(W_rr·Λ_n, u_n + ε_n·Λ_n)| on a corner row, W_rr·|Λ_t − proj_[−β, β](Λ_t − (u_t +
+    ε_t·Λ_t)/W_rr)| on a tangential one, β = μ·ΣΛ_n⁺ (u = J·v + b; μ = ∞ rows skipped). A
+    diagnostic of the solve (tests, benchmarks/hard_steps.py), not used by it."""
+    worst = 0.0
+    for r in range(n_rows):
+        u = row_dot(r, rba, rbb, ja, jb, v) + bias[r]
+        a = rba[r]
+        b = rbb[r]
+        w = 0.0
+        for body, jr in ((a, ja), (b, jb)):
+            if body >= 0:
+                i = 3 * body
+                w += (jr[r, 0] ** 2 + jr[r, 1] ** 2) / mdiag[i] + jr[r, 2] ** 2 / mdiag[i + 2]
+        if tn0[r] < 0:
+            res = abs(min(w * lam[r], u + eps_n * lam[r]))
+        elif math.isinf(tmu[r]):
+            continue
+        else:
+            q1 = tn1[r]
+            sn = max(lam[tn0[r]], 0.0) + (max(lam[q1], 0.0) if q1 >= 0 else 0.0)
+            beta = tmu[r] * sn
+            trial = lam[r] - (u + eps_t * lam[r]) / w
+            res = w * abs(lam[r] - min(max(trial, -beta), beta))
+        worst = max(worst, res)
+    return worst
 
 
 @nb.njit(cache=True, inline="always")
