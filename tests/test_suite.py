@@ -123,8 +123,11 @@ def test_two_column_records_in_a_folder_and_a_file_list(tmp_path):
 
 
 def test_bad_sources_give_one_clear_error(tmp_path):
-    with pytest.raises(ValueError, match="no such file or folder"):
+    with pytest.raises(ValueError, match="no such file or folder") as err:
         suite.read_suite(tmp_path / "nope")
+    # and where the bundled records are (older instructions gave src/rockarch/data/)
+    hint = str(err.value).split("are in ")[1].rstrip(")")
+    assert (Path(hint) / "RSN6_IMPVALL.I_I-ELC180-hor1.AT2").is_file()
     with pytest.raises(ValueError, match="folder holds no record"):
         suite.read_suite(tmp_path)
 

@@ -27,7 +27,12 @@ from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD
 from rockarch.core.paths import atomic_write
 from rockarch.motion import intensity
-from rockarch.motion.records import G_LIKE_PEAK, UnitsWarning, read_record
+from rockarch.motion.records import (
+    G_LIKE_PEAK,
+    UnitsWarning,
+    bundled_record_path,
+    read_record,
+)
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.velocity_pulse import baker_pulse, check_method
 
@@ -167,6 +172,16 @@ def _is_record_file(p: Path) -> bool:
     return p.suffix.lower() == ".at2" or p.suffix.lower() in TWO_COLUMN_SUFFIXES
 
 
+def _bundled_hint() -> str:
+    """Where the bundled El Centro records are, for an error about a missing path."""
+    folder = bundled_record_path().parent
+    try:
+        folder = folder.relative_to(Path.cwd())
+    except ValueError:
+        pass
+    return f" (the bundled El Centro 1940 records are in {folder}{os.sep})"
+
+
 def record_files(sources) -> tuple[list[Path], list[Path]]:
     """Expand files and folders into record files and the metadata csv files found.
 
@@ -199,7 +214,7 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
         elif p.is_file():
             (metas if "searchresults" in p.name.lower() else files).append(p)
         else:
-            raise ValueError(f"{p}: no such file or folder")
+            raise ValueError(f"{p}: no such file or folder{_bundled_hint()}")
     if not files:
         raise ValueError("give at least one record (file or folder of records)")
     limits.check_count("the suite", len(files), "records", "give fewer records")
