@@ -57,7 +57,7 @@ def main() -> None:
             nr = 3 * m.n0.shape[0] + 2 * ws.cnt[0]
             v = np.column_stack([args_[4], args_[5], args_[6]]).ravel()
             res = law_residual(nr, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0,
-                               ws.tn1, ws.tmu, args_[10], args_[11], ws.sw.mdiag, v)
+                               ws.tn1, ws.tmu, args_[10], args_[11], ws.sw, v)
             residuals.append((its < 0, res / args_[12]))
         return its
 

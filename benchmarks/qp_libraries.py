@@ -246,7 +246,12 @@ def main() -> None:
     ap.add_argument("--every", type=int, default=10, help="keep every n-th violent step")
     ap.add_argument("--steps", type=int, default=20, help="at most this many steps")
     args = ap.parse_args()
+    if args.every < 1 or args.steps < 1 or args.seconds <= 0 or args.ratio <= 0:
+        ap.error("--every and --steps need at least 1, --seconds and --ratio a positive value")
     a, m, kept, seen = capture(args.seconds, args.ratio, args.every, args.steps)
+    if not kept:
+        raise SystemExit(f"error: no step of the first {args.seconds:g} s needed the proximal "
+                         f"continuation ({seen} seen): give more --seconds or a larger --ratio")
     probs = [problem(m, k) for k in kept]
     p0 = probs[0]
     print(f"wall 20x10 (205 blocks), first {args.seconds:g} s of El Centro at "

@@ -112,6 +112,8 @@ def main() -> None:
     ap.add_argument("--records", type=int, default=10,
                     help="synthetic records of part 2 (seed 0; the first 10 are the default's)")
     args = ap.parse_args()
+    if args.cells < 2:
+        ap.error(f"--cells needs at least 2 (got {args.cells})")
     hs = tuple(float(v) for v in args.h_factors.split(","))
     if len(hs) != 3:
         raise SystemExit("error: --h-factors needs three values")

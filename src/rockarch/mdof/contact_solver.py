@@ -694,7 +694,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
 
 
 @nb.njit(cache=True)
-def law_residual(n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t, mdiag, v):
+def law_residual(n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t, sw, v):
     """The largest natural residual of the step's contact law (docs/theory.md Eqs.
     (9.1)–(9.3) with the regularisation ε) at the impulses ``lam`` and velocities ``v`` [m/s]:
     |min(W_rr·Λ_n, u_n + ε_n·Λ_n)| on a corner row, W_rr·|Λ_t − proj_[−β, β](Λ_t − (u_t +
@@ -703,13 +703,7 @@ def law_residual(n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_
     worst = 0.0
     for r in range(n_rows):
         u = row_dot(r, rba, rbb, ja, jb, v) + bias[r]
-        a = rba[r]
-        b = rbb[r]
-        w = 0.0
-        for body, jr in ((a, ja), (b, jb)):
-            if body >= 0:
-                i = 3 * body
-                w += (jr[r, 0] ** 2 + jr[r, 1] ** 2) / mdiag[i] + jr[r, 2] ** 2 / mdiag[i + 2]
+        w = _wrr(r, rba, rbb, ja, jb, sw)
         if tn0[r] < 0:
             res = abs(min(w * lam[r], u + eps_n * lam[r]))
         elif math.isinf(tmu[r]):
