@@ -155,6 +155,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     x, y, ph, vx, vy, om = kin.at_rest(cx0, cy0)
     xm, ym, phm = kin.triple(nbod)
     tvx, tvy, tom = kin.triple(nbod)
+    svx, svy, som = kin.triple(nbod)
     was_open = np.zeros((nj, 2), dtype=np.bool_)
     keep = np.zeros(n, dtype=np.bool_)
     free_t = np.zeros(nj, dtype=np.bool_)
@@ -189,8 +190,17 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     v_imp = kin.IMPACT_SPEED * g * h
     v_app = kin.APPROACH_SPEED * g * h
     reach = kin.IMPACT_HORIZON * h
+    retry = False
+    i_step = i_prev
     while step < n_steps:
-        nsub, t_step, hc = kin.step_start(sub, ahead, t, t_step, nsub, h, hc, ws.lam)
+        nsub, t_step, hc = kin.step_start(sub, ahead or retry, t, t_step, nsub, h, hc, ws.lam)
+        retry = False
+        if sub == 0:
+            i_step = i_prev
+            for j in range(nbod):
+                svx[j] = vx[j]
+                svy[j] = vy[j]
+                som[j] = om[j]
         i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak,
                                     ck, amp)
         for j in range(nbod):
@@ -206,6 +216,16 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             v_search = vnow
         its = contact_step(m, xm, ym, phm, vx, vy, om, gtol, hc, v_app, eps_n, eps, tol_u,
                            tol_l * hc / h, margin, ws)
+        if its < 0 and nsub == 1 and ws.cnt[1] == 0:
+            # not settled: the step again as REFINE substeps (Eq. 6.5), warm-started from
+            # the last proximal iterate
+            i_prev = i_step
+            for j in range(nbod):
+                vx[j] = svx[j]
+                vy[j] = svy[j]
+                om[j] = som[j]
+            retry = True
+            continue
         if its < 0 or ws.cnt[1] > 0:  # not solved, or more new contacts than room
             fails += 1
             ws.cnt[1] = 0
