@@ -61,12 +61,34 @@ def cases(quick: bool) -> list[tuple[str, list, list, float]]:
     beside = [[[-0.4, 0], [0, 0], [0, 0.5], [-0.4, 0.5]]]
     out += [(f"block beside a support, mu {mu:g}", [RECT], beside, mu)
             for mu in (0.5, 2.0, 10.0)]
-    wall = [np.asarray(p).tolist() for p in bd.wall(4, 3, 0.4, 0.2).polygons]
+    wall = _polys(bd.wall(4, 3, 0.4, 0.2))
     out += [(f"wall 4 x 3, mu {mu:g}", wall, [], mu) for mu in (0.6, 2.0, 10.0)]
     if not quick:
         out.append(("arch N=10 on 3 x 1.5 m piers (quads), mu 0.6",
                     _quads_of_bridge(catenary(10.0, 3.0, 0.25), 10, 3.0, 1.5), [], 0.6))
+        # cases added on 2026-11-29 after the code they check was written (a check of
+        # geometries the statics had not been tuned on)
+        out += [
+            ("trilithon, columns 0.3 x 1.8, clear span 1.2, lintel 0.3, mu 0.6",
+             _polys(bd.colonnade(2, 0.3, 1.8, 1.2, 0.3)), [], 0.6),
+            ("colonnade, 3 columns of 2 drums 0.3 x 0.75, lintel 0.25, mu 0.5",
+             _polys(bd.colonnade(3, 0.3, 1.5, 1.0, 0.25, drums=2)), [], 0.5),
+            ("0.4 x 0.8 block on a 0.6 x 0.6 block, mu 0.2 (slides)",
+             [[[-0.3, 0], [0.3, 0], [0.3, 0.6], [-0.3, 0.6]],
+              [[-0.2, 0.6], [0.2, 0.6], [0.2, 1.4], [-0.2, 1.4]]], [], 0.2),
+            ("trapezoid block, base 0.6, top 0.3, height 1, mu 0.6",
+             [[[0, 0], [0.6, 0], [0.45, 1.0], [0.15, 1.0]]], [], 0.6),
+            ("wall 3 x 2, 0.4 x 0.3 blocks, mu 0.8", _polys(bd.wall(3, 2, 0.4, 0.3)), [], 0.8),
+            ("wall 5 x 4, 0.3 x 0.15 blocks, mu 0.5", _polys(bd.wall(5, 4, 0.3, 0.15)), [],
+             0.5),
+            ("blocks 0.3 x 1 and 0.3 x 0.8 side by side, mu 0.7",
+             [[[0, 0], [0.3, 0], [0.3, 1], [0, 1]], [[0.3, 0], [0.6, 0], [0.6, 0.8], [0.3, 0.8]]],
+             [], 0.7)]
     return out
+
+
+def _polys(a) -> list:
+    return [np.asarray(p).tolist() for p in a.polygons]
 
 
 def _run(python: str, case: dict) -> dict:
