@@ -83,6 +83,9 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
                    f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts{beyond}")
     if s.get("step_sensitive"):
         typer.echo(_step_note(s["h_half"]))
+    if s.get("lcp_failures"):
+        typer.echo(f"note: {s['lcp_failures']} of {s['steps']} steps not solved to the contact "
+                   "solver's tolerance, even as substeps (docs/theory.md §9)")
     stride = getattr(resp, "stride", 1)
     if stride > 1:  # docs/theory.md Eq. (8.6): the verdict above is exact
         typer.echo(f"history: every {stride}th step kept (ROCKARCH_MAX_SAMPLES)")

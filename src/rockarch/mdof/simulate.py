@@ -100,14 +100,17 @@ class MDOFResponse(Response):
                                             - self.max_rotation_ratio) > STEP_CHECK_ROTATION)
 
     def to_dict(self) -> dict:
-        """The verdict plus ``open_joints_max``, ``max_slip`` (m) and
-        ``sliding_contacts_max`` (the CLI's ``--json`` output); for a checked history
+        """The verdict plus ``open_joints_max``, ``max_slip`` (m), ``sliding_contacts_max``,
+        ``new_contacts_max``, ``steps`` and ``lcp_failures`` (the steps whose contact problem
+        was not solved to its tolerance: docs/theory.md §9) (the CLI's ``--json`` output);
+        for a checked history
         ``h_half`` (the rerun's ``h_factor``, verdict and largest rotation ratio) and
         ``step_sensitive``."""
         out = {**super().to_dict(), "open_joints_max": int(self.open_joints_max),
                "max_slip": float(self.max_slip),
                "sliding_contacts_max": int(self.sliding_contacts_max),
-               "new_contacts_max": int(self.new_contacts_max)}
+               "new_contacts_max": int(self.new_contacts_max), "steps": int(self.steps),
+               "lcp_failures": int(self.lcp_failures)}
         if self.h_half is not None:
             out["h_half"] = dict(self.h_half)
             out["step_sensitive"] = bool(self.step_sensitive)
