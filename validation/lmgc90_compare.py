@@ -10,8 +10,9 @@ direction); "stands" = the largest centroid displacement stays below 1 mm over 1
 dt = 1e-3 s; bisection on lambda to 0.4 % from a bracket around rockarch's ap_min. Contact
 law IQS_CLB_g0 (unilateral, inelastic, Coulomb without dilatancy). The same convex polygons
 go to both codes (an arch's voussoirs as the quadrilaterals of their joint corners).
-Time history: a 0.4 x 1 m block under a one-cycle sine pulse of its ground (LMGC90: the
-supports driven at the ground velocity), the largest rotation and the verdict.
+Time histories: a 0.4 x 1 m block under a one-cycle sine pulse of its ground (LMGC90: the
+supports driven at the ground velocity), the largest rotation and the verdict; a thick
+catenary arch of 12 voussoirs, every voussoir's rotation until rockarch's collapse.
 Prints one line per case; exits 0 (a comparison, not a test).
 """
 
@@ -126,6 +127,61 @@ def bisect(python: str, polys, supports, mu: float, guess: float, sign: int,
     return lo, hi, runs
 
 
+def _ground_velocity(gm, t_free: float) -> dict:
+    """The ground's velocity [m/s] at the pulse's knots (the integral of its acceleration),
+    held for ``t_free`` after it."""
+    t = np.asarray(gm.t, float)
+    acc = np.asarray(gm.a, float)
+    v = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * np.diff(t))])
+    return {"t": np.concatenate([t, [t[-1] + t_free]]).tolist(),
+            "v": np.concatenate([v, [v[-1]]]).tolist()}
+
+
+def thick_arch() -> tuple[list, list]:
+    """The thick catenary arch of ``validation/siconos_compare.py --more`` (l = 8, f = 3,
+    d = 0.3 m, N = 12) with quadrilateral voussoirs (LMGC90 takes convex polygons), 0.6 m
+    up on two fixed supports under its springings: (voussoirs, supports)."""
+    v = voussoirs(catenary(8.0, 3.0, 0.3), 12)
+    ip, ep = v.intrados + [0.0, 0.6], v.extrados + [0.0, 0.6]
+    quads = [[ip[i], ip[i + 1], ep[i + 1], ep[i]] for i in range(12)]
+    left = [ep[0], [ep[0][0], 0.0], [ip[0][0], 0.0], ip[0]]
+    right = [ip[-1], [ip[-1][0], 0.0], [ep[-1][0], 0.0], ep[-1]]
+    return ([np.asarray(q).tolist() for q in quads],
+            [np.asarray(q).tolist() for q in (left, right)])
+
+
+def arch_history(python: str) -> None:
+    """Every voussoir's rotation of the thick arch (:func:`thick_arch`, mu 0.5) under a
+    sine pulse of 1.3 ap,min, T = 0.8 s, until rockarch's collapse: rockarch at its default
+    step against LMGC90 at dt = 1e-3 and 5e-4 s."""
+    quads, sups = thick_arch()
+    a = bd.from_polygons(quads, supports=sups, mu=0.5)
+    gm = pulse("sine", period=0.8, ap=1.3 * a.ap_min)
+    r = simulate(a, gm, t_free=2.0)
+    t_end = float(r.t[-1])
+    rot = r.q[:, :, 2]
+    for dt in (1e-3, 5e-4):
+        ground = _ground_velocity(gm, max(t_end - float(gm.t[-1]), 0.0) + 0.1)
+        out = _run(python, {"polygons": quads, "supports": sups, "mu": 0.5, "dt": dt,
+                            "duration": t_end, "record": round(5e-3 / dt), "ground": ground})
+        hist = np.asarray(out["history"])
+        t, lm = hist[:, 0], hist[:, 3:]
+        keep = t <= t_end
+        ours = np.stack([np.interp(t[keep], r.t, rot[:, i]) for i in range(rot.shape[1])], 1)
+        dev = np.abs(ours - lm[keep]).max(axis=1) / np.abs(ours).max()
+        k = min(int(np.searchsorted(t[keep], 0.8)), int(keep.sum()) - 1)  # at 0.8 s [mrad]
+        split = [1e3 * (th[k, 3] - th[k, 2]) for th in (ours, lm[keep])] + [
+            1e3 * (th[k, 4] - th[k, 3]) for th in (ours, lm[keep])]
+        print(f"thick arch (quadrilateral voussoirs, mu 0.5), sine 1.3 ap,min T = 0.8 s "
+              f"(rockarch {'collapses' if r.overturned else 'stands'}, h = {r.h:.3g} s): "
+              f"largest difference of a voussoir's rotation from LMGC90 at dt = {dt:g} s, "
+              f"relative to the largest rotation ({np.abs(ours).max():.4f} rad): "
+              f"{100 * dev[t[keep] <= 1.0].max():.2f} % until t = 1 s, "
+              f"{100 * dev.max():.2f} % until t = {t_end:.3f} s; at t = 0.8 s joints 3 and 4 "
+              f"opened by {split[0]:.1f} and {split[2]:.1f} mrad (LMGC90 {split[1]:.1f} and "
+              f"{split[3]:.1f})", flush=True)
+
+
 def time_history(python: str) -> None:
     """A 0.4 x 1 m block (mu 0.6) under a one-cycle sine pulse of 1.5 B/H·g, T = 0.5 s."""
     a = bd.from_polygons([RECT], mu=0.6)
@@ -133,14 +189,9 @@ def time_history(python: str) -> None:
         gm = pulse("sine", period=0.5, ap=ratio * a.ap_min)
         r = simulate(a, gm, t_free=1.5)
         th = np.abs(r.q[:, 0, 2]).max()
-        t = np.asarray(gm.t, float)
-        acc = np.asarray(gm.a, float)
-        v = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * np.diff(t))])
-        t_all = np.concatenate([t, [t[-1] + 1.5]])
-        v_all = np.concatenate([v, [v[-1]]])
+        ground = _ground_velocity(gm, 1.5)
         out = _run(python, {"polygons": [RECT], "supports": [], "mu": 0.6, "dt": 1e-3,
-                            "duration": float(t_all[-1]), "record": 10,
-                            "ground": {"t": t_all.tolist(), "v": v_all.tolist()}})
+                            "duration": ground["t"][-1], "record": 10, "ground": ground})
         alpha = math.atan(0.4)
         lm_over = out["max_rotation"] > 2 * alpha
         print(f"time history: block 0.4 x 1, sine T = 0.5 s, 1 cycle, {ratio:g} B/H g: "
@@ -175,6 +226,8 @@ def main() -> None:
               f"({100 * (mid / lam - 1):+.1f} %; {runs} runs, "
               f"{time.perf_counter() - t0:.0f} s)", flush=True)
     time_history(args.python)
+    if not args.quick:
+        arch_history(args.python)
     sys.stdout.flush()
 
 

@@ -12,8 +12,8 @@ velocities [m/s] of the ground and supports, along x: a time history). Every 2-D
 extruded to a prism of unit depth along y; the 2-D y axis is LMGC90's z (gravity -z). The
 ground is a fixed slab under y = 0. Written: ``displacement`` (the largest centroid
 displacement of a block over the run [m]), ``max_rotation`` (the largest |rotation| of a
-block about y [rad]) and the history of block 0's centroid (x, z) and rotation, every
-``record`` steps.
+block about y [rad]) and the history (time, block 0's centroid x and z, then every block's
+rotation in the 2-D sense, counter-clockwise positive) every ``record`` steps.
 """
 
 from __future__ import annotations
@@ -92,11 +92,11 @@ def main() -> None:
         for i in range(nb):
             fr = np.array(res.body_frames[i], float).reshape(3, 3)
             r = fr.T @ f0[i]
-            angles.append(math.atan2(r[0, 2], r[0, 0]))
+            angles.append(-math.atan2(r[0, 2], r[0, 0]))  # about -y: the 2-D sense
         disp, rot = max(disp, float(d.max())), max(rot, float(np.max(np.abs(angles))))
         if k % record == 0:
             hist.append([(k + 1) * case["dt"], float(c[0, 0] - c0[0, 0]),
-                         float(c[0, 2] - c0[0, 2]), angles[0]])
+                         float(c[0, 2] - c0[0, 2]), *angles])
         if disp > case.get("stop", math.inf):
             break
     json.dump({"displacement": disp, "max_rotation": rot, "history": hist,

@@ -45,12 +45,31 @@ def test_lmgc90_driver_time_history(monkeypatch, capsys):
     assert any("wall 4 x 3" in n for n in names)
 
 
+def test_lmgc90_driver_arch_history(monkeypatch, capsys):
+    drv = _load("lmgc90_compare")
+    sent = []
+
+    def oracle(python, case):  # LMGC90's answer: every voussoir at rest, 3 records
+        sent.append(case)
+        n = len(case["polygons"])
+        return {"history": [[t, 0.0, 0.0] + [0.0] * n for t in (0.0, 0.1, 0.2)]}
+
+    monkeypatch.setattr(drv, "_run", oracle)
+    drv.arch_history("python")
+    out = capsys.readouterr().out
+    assert out.count("thick arch") == 2
+    # rockarch's voussoirs rotate, LMGC90's stub does not: 100 % of the largest rotation
+    assert "100.00 %" in out
+    quads, sups = drv.thick_arch()
+    assert all(c["polygons"] == quads and c["supports"] == sups for c in sent)
+
+
 def test_siconos_driver_cases_serialise():
     drv = _load("siconos_compare")
     n = 0
-    for name, a, m, h_factor in drv.cases():
+    for name, a, m, h_factor in [*drv.cases(), *drv.more_cases()]:
         case = drv.case_json(a, m, h_factor / a.p_ref, float(m.t[-1]))
         json.dumps(case)  # what goes to the oracle's process
         assert len(case["mass"]) == a.mass.shape[0], name
         n += 1
-    assert n == 6
+    assert n == 6 + 6
