@@ -135,6 +135,10 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max,
     most new contacts carrying an impulse at once, steps skipped at rest).
 
+    A step whose contact problem does not settle (docs/theory.md §9) runs again as
+    ``REFINE`` substeps warm-started from its last proximal iterate; ``failures`` counts the
+    (sub)steps that do not settle even so.
+
     A structure at rest stays at rest while the step's mean ground acceleration stays in
     the interval where its contact forces remain admissible (docs/theory.md Eq. (9.11),
     :func:`rockarch.mdof.contact_solver.rest_interval`): those steps are not solved again,
