@@ -99,6 +99,14 @@ def more_cases():
     yield ("wall 3x2, 0.4x0.3 m blocks, mu=0.8 (the end wedge rocks), sine 1.3 ap,min "
            "T=0.8 s", wall, motion.pulse("sine", period=0.8, ap=1.3 * wall.ap_min),
            MDOF_H_FACTOR)
+    low = bd.bridge(catenary(10.0, 3.0, 0.25), 10, pier_height=3.0, pier_width=1.5, mu=0.3)
+    yield ("the arch on piers 3x1.5 m, mu=0.3 (its springers near sliding under gravity), "
+           "sine 1.3 ap,min T=1 s", low, motion.pulse("sine", period=1.0, ap=1.3 * low.ap_min),
+           MDOF_H_FACTOR)
+    free = bd.with_friction(mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 10), 0.3)
+    yield ("10-voussoir catenary arch l=10 f=3 d=0.25, mu=0.3, half-sine 2 ap,min T=0.5 s, "
+           "2 s free", free, motion.pulse("halfsine", period=0.5, ap=2.0 * free.ap_min),
+           MDOF_H_FACTOR)
     br = bd.bridge(catenary(10.0, 3.0, 0.25), 10, spans=2, pier_height=2.0, pier_width=1.2,
                    mu=0.5)
     yield ("2-span bridge, N=10 per span, piers 2x1.2 m, mu=0.5, sine 1.3 ap,min T=1 s", br,

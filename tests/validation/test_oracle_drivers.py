@@ -72,4 +72,4 @@ def test_siconos_driver_cases_serialise():
         json.dumps(case)  # what goes to the oracle's process
         assert len(case["mass"]) == a.mass.shape[0], name
         n += 1
-    assert n == 6 + 6
+    assert n == 6 + 8
