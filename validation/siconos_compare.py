@@ -255,6 +255,10 @@ def main(argv=None) -> int:
                     help="instead: a freely rocking block against Siconos and Housner's "
                     "equation (a convergence study, docs/validation.md; about 3 min)")
     args = ap.parse_args(argv)
+    if not args.until > 0.0:
+        ap.error(f"--until must be a time > 0 s, got {args.until}")
+    if args.gap_tol is not None and not 1e-10 <= args.gap_tol <= 1e-3:
+        ap.error(f"--gap-tol must be within 1e-10 … 1e-3 (rockarch's range), got {args.gap_tol}")
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import siconos.kernel"],
                            capture_output=True)
     if probe.returncode != 0:

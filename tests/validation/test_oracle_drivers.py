@@ -13,6 +13,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 VALIDATION = Path(__file__).resolve().parents[2] / "validation"
 
@@ -73,3 +74,12 @@ def test_siconos_driver_cases_serialise():
         assert len(case["mass"]) == a.mass.shape[0], name
         n += 1
     assert n == 6 + 8
+
+
+def test_siconos_driver_refuses_bad_options(capsys):
+    drv = _load("siconos_compare")
+    for argv in (["--more", "--until", "-1"], ["--convergence", "--gap-tol", "1"]):
+        with pytest.raises(SystemExit) as e:
+            drv.main(argv)
+        assert e.value.code == 2
+        assert "error:" in capsys.readouterr().err
