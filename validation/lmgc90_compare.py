@@ -42,13 +42,16 @@ def _quads_of_bridge(arch, n, pier_height, pier_width):
     b = bd.bridge(arch, n, pier_height=pier_height, pier_width=pier_width)
     v = voussoirs(arch, n)
     piers = [np.asarray(p).tolist() for p in b.polygons if len(p) <= 6]
-    ip, ep = v.intrados, v.extrados
-    off = np.asarray(b.polygons[len(piers)][0]) - ip[0]  # where bridge() put the arch
-    quads = []
-    for i in range(n):
-        q = np.array([ip[i], ip[i + 1], ep[i + 1], ep[i]]) + off
-        quads.append(q.tolist())
-    return piers + quads
+    off = np.asarray(b.polygons[len(piers)][0]) - v.intrados[0]  # where bridge() put the arch
+    return piers + _quads(v, off)
+
+
+def _quads(v, offset) -> list:
+    """The voussoirs ``v`` as the quadrilaterals of their joint corners, moved by
+    ``offset``."""
+    ip, ep = v.intrados + offset, v.extrados + offset
+    return [np.array([ip[i], ip[i + 1], ep[i + 1], ep[i]]).tolist()
+            for i in range(len(ip) - 1)]
 
 
 def cases(quick: bool) -> list[tuple[str, list, list, float]]:
@@ -143,11 +146,9 @@ def thick_arch() -> tuple[list, list]:
     up on two fixed supports under its springings: (voussoirs, supports)."""
     v = voussoirs(catenary(8.0, 3.0, 0.3), 12)
     ip, ep = v.intrados + [0.0, 0.6], v.extrados + [0.0, 0.6]
-    quads = [[ip[i], ip[i + 1], ep[i + 1], ep[i]] for i in range(12)]
     left = [ep[0], [ep[0][0], 0.0], [ip[0][0], 0.0], ip[0]]
     right = [ip[-1], [ip[-1][0], 0.0], [ep[-1][0], 0.0], ep[-1]]
-    return ([np.asarray(q).tolist() for q in quads],
-            [np.asarray(q).tolist() for q in (left, right)])
+    return _quads(v, [0.0, 0.6]), [np.asarray(q).tolist() for q in (left, right)]
 
 
 def arch_history(python: str) -> None:
