@@ -185,10 +185,8 @@ REL = 1e-6
 #: scaling the record by 1 + 1e-9 moves the impact count from 238 to 232 and the open
 #: joints from 11 to 9; halving the step twice spans 232–403 impacts (2026-11-29). A
 #: single history's impact count is known to about ±35 %, its largest slip to about ±50 %.
-#: ``steps`` of a run that collapses ends at the collapse: a collapse time that moves by a
-#: step or two on another machine moves it by as many.
 CHAOTIC = {"impacts": (0.35, 3), "open_joints_max": (0.0, 2), "sliding_contacts_max": (0.0, 2),
-           "max_slip": (0.5, 0.0), "steps": (0.0, 2)}
+           "max_slip": (0.5, 0.0)}
 
 
 def _unit(text: str) -> float:
