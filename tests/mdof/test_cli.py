@@ -50,6 +50,23 @@ def test_simulate_mdof_says_when_steps_were_not_solved(monkeypatch):
     assert "note:" not in runner.invoke(app, args).stdout
 
 
+def test_simulate_mdof_says_how_far_it_slid():
+    # a block 0.4 x 1 m with mu = 0.2 < B/H can only slide: the summary gives the slip the
+    # JSON reports (mm, 3 digits) and how many joints slid at once; a frictionless arch
+    # never slides and has no such line
+    args = ["simulate", "mdof", "--column", "0.4,1", "--friction", "0.2", "--signal", "sine",
+            "--period", "1", "--ratio", "1.5"]
+    js = _json([*args, "--json"])
+    assert js["max_slip"] > 0.01 and js["sliding_contacts_max"] == 1
+    line = [x for x in runner.invoke(app, args).stdout.splitlines()
+            if x.startswith("sliding:")]
+    assert line == [f"sliding: largest slip {1e3 * js['max_slip']:.3g} mm, up to 1 joint "
+                    "sliding at once"]
+    arch = runner.invoke(app, ["simulate", "mdof", *ARCH, "--blocks", "10", "--signal",
+                               "sine", "--period", "1", "--ratio", "1.2", "--no-step-check"])
+    assert "sliding:" not in arch.stdout
+
+
 def test_simulate_mdof_column_and_record(tmp_path):
     rec = tmp_path / "r.txt"
     t = np.arange(0, 2, 0.01)

@@ -81,6 +81,10 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
                   if s["max_rotation_ratio"] >= 1.0 else "")
         typer.echo(f"safe: max rotation / its overturning value = "
                    f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts{beyond}")
+    if s.get("sliding_contacts_max"):  # a structure with friction that slid
+        n = s["sliding_contacts_max"]
+        typer.echo(f"sliding: largest slip {1e3 * s['max_slip']:.3g} mm, up to {n} "
+                   f"joint{'s' if n > 1 else ''} sliding at once")
     if s.get("step_sensitive"):
         typer.echo(_step_note(s["h_half"]))
     if s.get("lcp_failures"):
