@@ -150,6 +150,26 @@ def test_every_figure_kind_labels_its_axes_with_units():
             assert re.search(r"\[.+\]", xl) and re.search(r"\[.+\]", yl), (name, xl, yl)
 
 
+def test_a_response_that_slid_shows_its_slip():
+    """An MDOF response with friction that slid gets a panel of its largest joint slip
+    (mm); one that did not keeps the rotation and ground panels alone."""
+    import rockarch as ra
+    from rockarch import mdof
+    from rockarch.mdof import builders as bd
+
+    step = ra.pulse("step", period=0.2, ap=0.5 * 9.81)
+    slid = mdof.simulate(bd.with_friction(mdof.single_block(1.0, 1.0), 0.1), step,
+                         t_free=1.0)
+    rests = mdof.simulate(bd.with_friction(mdof.single_block(1.0, 1.0), 0.8), step,
+                          t_free=1.0)
+    fig = figures.plot_response(slid, step)
+    panel = [ax for ax in fig.axes if "slip" in ax.get_ylabel()]
+    assert len(fig.axes) == 3 and len(panel) == 1 and "[mm]" in panel[0].get_ylabel()
+    assert max(ln.get_ydata().max() for ln in panel[0].lines) == pytest.approx(
+        1e3 * slid.max_slip, rel=1e-6)
+    assert rests.sliding_contacts_max == 0 and len(figures.plot_response(rests).axes) == 2
+
+
 def test_fragility_axis_in_the_units_of_json_and_g_on_top():
     """--json gives the median in m/s²: the x axis too, with PGA in g on a second axis."""
     import rockarch as ra

@@ -42,6 +42,13 @@ def test_newmark_sliding_block():
     assert r.t_end == pytest.approx(1.0, abs=0.01)
     d = r.to_dict()
     assert d["max_slip"] == r.max_slip and d["sliding_contacts_max"] == 1
+    # the slip history (MDOFResponse.slip, at the joint's midpoint): 0 as built, growing
+    # while the block slides one way, its end Newmark's slip; the kernel's max_slip is the
+    # same offset at every step (1e-6: the midpoint and the corners of a joint that does
+    # not turn slide together, to rounding of the recorded positions)
+    s = r.slip()
+    assert s[0] == 0.0 and np.all(np.diff(s) >= -1e-12)
+    assert s.max() == pytest.approx(r.max_slip, rel=1e-6)
 
 
 def _mode(lam: float, a: float, mu: float) -> str:

@@ -116,6 +116,43 @@ class MDOFResponse(Response):
             out["step_sensitive"] = bool(self.step_sensitive)
         return out
 
+    def slip(self) -> np.ndarray:
+        """The largest slip of a joint in contact at every recorded time [m]: the tangential
+        offset of the joint's two faces at its midpoint (each face carried by its block, the
+        tangent turned with the block on the normal's tail side; docs/theory.md §9), over
+        the joints not open at both corners (``joints`` < 3). Its largest value is
+        ``max_slip`` as recorded (0 for a structure without friction, up to the turn of a
+        rocking joint's midpoint, second order in its rotation)."""
+        a = self.assembly
+        nt, nj = self.q.shape[0], a.n_joints
+        out = np.zeros(nt)
+        if nj == 0:
+            return out
+        mid = a.corners.mean(axis=1) * self.scale
+        tan = np.stack([-a.normal[:, 1], a.normal[:, 0]], axis=1)
+        sides = []
+        for body in (a.body_a, a.body_b):
+            ground = body < 0
+            idx = np.where(ground, 0, body)
+            rel = mid - a.centroid[idx] * self.scale
+            sides.append((ground, idx, rel))
+        for i0 in range(0, nt, 2048):  # in chunks: (chunk, nj, 2) arrays at a time
+            q = self.q[i0:i0 + 2048]
+            pts, turn = [], None
+            for ground, idx, rel in sides:
+                x, y, ph = (q[:, idx, c] for c in range(3))
+                c, sn = np.cos(ph), np.sin(ph)
+                px = np.where(ground, mid[:, 0], x + c * rel[:, 0] - sn * rel[:, 1])
+                py = np.where(ground, mid[:, 1], y + sn * rel[:, 0] + c * rel[:, 1])
+                pts.append((px, py))
+                if turn is None:  # the tangent turns with body a (fixed on the ground)
+                    turn = (np.where(ground, tan[:, 0], c * tan[:, 0] - sn * tan[:, 1]),
+                            np.where(ground, tan[:, 1], sn * tan[:, 0] + c * tan[:, 1]))
+            off = (turn[0] * (pts[1][0] - pts[0][0]) + turn[1] * (pts[1][1] - pts[0][1]))
+            touching = self.joints[i0:i0 + 2048] < 3
+            out[i0:i0 + 2048] = np.where(touching, np.abs(off), 0.0).max(axis=1)
+        return out
+
     def corners_at(self, i: int) -> np.ndarray:
         """Block outlines at record i: list of (K, 2) arrays in the ground frame."""
         a = self.assembly

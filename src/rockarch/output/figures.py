@@ -139,11 +139,19 @@ def for_display(t: np.ndarray, y: np.ndarray, bins: int = DISPLAY_BINS
 
 def plot_response(resp, motion=None) -> Figure:
     """Normalised rotation (theta/alpha or u/delta) and a_g/ap,min over time, impacts and
-    overturning marked; ``resp`` is a block, mechanism or MDOF response. Returns the
-    figure."""
+    overturning marked; ``resp`` is a block, mechanism or MDOF response (one that slid: its
+    largest joint slip, :meth:`rockarch.mdof.MDOFResponse.slip`, between the two). Returns
+    the figure."""
     t, x, ap_min, ylabel, title = _history(resp)
-    fig = new_figure((7.5, 5.2))
-    ax1, ax2 = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    slid = getattr(resp, "sliding_contacts_max", 0) > 0  # MDOF with friction, and it slid
+    fig = new_figure((7.5, 6.6 if slid else 5.2))
+    if slid:
+        ax1, ax3, ax2 = fig.subplots(3, 1, sharex=True,
+                                     gridspec_kw={"height_ratios": [2, 1, 1]})
+        ax3.plot(*for_display(t, 1e3 * resp.slip()), "g-", lw=1.0)
+        ax3.set_ylabel("largest joint\nslip [mm]")
+    else:
+        ax1, ax2 = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     ax1.plot(*for_display(t, x), "k-", lw=1.0)
     ax1.axhline(1.0, color="r", ls=":", lw=0.8)
     if x.min() < 0:  # signed rotation (block, SDOF mechanism); the MDOF measure is >= 0
