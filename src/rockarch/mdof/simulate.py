@@ -11,11 +11,14 @@ contacts wherever a corner reaches a face, :mod:`rockarch.mdof.collision`).
 from __future__ import annotations
 
 import math
+import sys
+import threading
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from rockarch.core import limits
+from rockarch.core.console import on_terminal
 from rockarch.core.constants import GAP_TOL, T_FREE
 from rockarch.core.constants import MDOF_H_FACTOR as H_FACTOR
 from rockarch.core.jit_cache import announce_compile, kernel_array
@@ -41,6 +44,9 @@ STEP_CHECK_ROTATION = 0.1
 #: costs about twice the run: milliseconds to seconds) and, on the general stepper, those
 #: of at most this many blocks (a wall of hundreds of blocks takes minutes per history).
 STEP_CHECK_MAX_BLOCKS = 20
+#: A single simulation shows its progress (:func:`simulate`, ``progress``) once it has run
+#: this long [s]: shorter ones stay silent.
+PROGRESS_AFTER = 2.0
 
 
 def check_h_factor(h_factor) -> float:
@@ -204,7 +210,8 @@ def _plan(t_end: float, h: float, n_blocks: int, n_joints: int, record_every: in
 def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None = None,
              t_free: float = T_FREE, h_factor: float = H_FACTOR, gap_tol: float = GAP_TOL,
              record_every: int = 1, through_collapse: bool = False,
-             check_step: bool = False, skip_rest: bool = True) -> MDOFResponse:
+             check_step: bool = False, skip_rest: bool = True,
+             progress: bool | None = None) -> MDOFResponse:
     """Simulate the assembly on the ground motion (used as given, m/s²).
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
@@ -219,19 +226,21 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     verdict with the step while maps and suites do not (docs/mdof.md, "Convergence on
     records"). ``skip_rest`` False solves every step of the general stepper, also those
     where the structure is at rest and stays there (docs/theory.md Eq. (9.11); the
-    reference of that shortcut's tests and benchmarks).
+    reference of that shortcut's tests and benchmarks). ``progress``: a progress bar on
+    stderr (the simulated time reached) for a run that lasts more than
+    :data:`PROGRESS_AFTER` s; None: only when stderr is a terminal.
     """
     check_settings(t_free, h_factor, gap_tol)
     for name, flag in (("check_step", check_step), ("skip_rest", skip_rest)):
         if not isinstance(flag, (bool, np.bool_)):
             raise TypeError(f"{name} must be True or False, got {type(flag).__name__}")
     res = _simulate(assembly, motion, p, t_free, h_factor, gap_tol, record_every,
-                    through_collapse, skip_rest)
+                    through_collapse, skip_rest, progress, "simulating")
     if not check_step:
         return res
     # the verdict at h/2 (Moreau–Jean is O(h) at impacts); a history of two samples
     half = _simulate(assembly, motion, p, t_free, h_factor / 2, gap_tol, 2 ** 40,
-                     through_collapse, skip_rest)
+                     through_collapse, skip_rest, progress, "step check at h/2")
     return replace(res, h_half={"h_factor": h_factor / 2, "overturned": half.overturned,
                                 "t_overturn": half.t_overturn,
                                 "max_rotation_ratio": half.max_rotation_ratio})
@@ -245,9 +254,48 @@ def _announce(chain: bool) -> None:
         announce_compile(_g.run, "the general contact stepper", 60)
 
 
+def _with_progress(run, out_t: np.ndarray, t_end: float, label: str, progress: bool | None):
+    """``run()`` (a compiled kernel that releases the GIL and writes the times it records
+    into ``out_t`` in order), with a progress bar of the simulated time on stderr once it
+    has taken :data:`PROGRESS_AFTER` s (``progress``: :func:`rockarch.core.console.on_terminal`).
+    The kernel runs in a daemon thread: an interrupt (Ctrl-C) ends the process without
+    waiting for it. The result is the kernel's, bit for bit."""
+    if not on_terminal(progress):
+        return run()
+    box: dict = {}
+
+    def work() -> None:
+        try:
+            box["out"] = run()
+        except BaseException as exc:  # noqa: BLE001 - re-raised in the caller's thread
+            box["err"] = exc
+
+    th = threading.Thread(target=work, daemon=True, name="rockarch-simulate")
+    th.start()
+    th.join(PROGRESS_AFTER)
+    if th.is_alive():
+        from tqdm import tqdm
+
+        timed = out_t.size > 10  # a history of a few samples (the step check): time alone
+        fmt = ("{desc}: {percentage:3.0f}%|{bar}| t = {n:.2f} of {total:.2f} s "
+               "[{elapsed}<{remaining}]" if timed else "{desc}: {elapsed}")
+        with tqdm(total=round(t_end, 2) if timed else None, desc=label, file=sys.stderr,
+                  leave=False, dynamic_ncols=True, bar_format=fmt) as bar:
+            while th.is_alive():
+                th.join(0.5)
+                if timed:
+                    n = int(np.count_nonzero(out_t))
+                    bar.n = round(float(out_t[n - 1]) if n else 0.0, 2)
+                bar.refresh()  # the elapsed time runs on where the motion is slow
+    if "err" in box:
+        raise box["err"]
+    return box["out"]
+
+
 def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
               t_free: float, h_factor: float, gap_tol: float, record_every: int,
-              through_collapse: bool, skip_rest: bool) -> MDOFResponse:
+              through_collapse: bool, skip_rest: bool, progress: bool | None = False,
+              label: str = "simulating") -> MDOFResponse:
     """:func:`simulate` without the step check (its settings already checked)."""
     scale = 1.0 if p is None else assembly.size_for(in_range("p", p, 0, math.inf,
                                                              lo_open=True, hi_open=True)) \
@@ -264,13 +312,16 @@ def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
     if uses_chain_stepper(assembly) and not through_collapse:
         model = chain_model(assembly)
         _announce(True)
-        out = _k.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e) + (0.0, 0, 0, 0)
+        out = _with_progress(lambda: _k.run(model, scale, tk, ak, 1.0, h, t_end, duration,
+                                            gap_tol, rec, out_t, out_q, out_s, out_e),
+                             out_t, t_end, label, progress) + (0.0, 0, 0, 0)
     else:
         model = graph_model(assembly)
         _announce(False)
-        out = _g.run(model, scale, tk, ak, 1.0, h, t_end, duration, gap_tol, rec, out_t,
-                     out_q, out_s, out_e, bool(through_collapse), bool(skip_rest))
+        out = _with_progress(lambda: _g.run(model, scale, tk, ak, 1.0, h, t_end, duration,
+                                            gap_tol, rec, out_t, out_q, out_s, out_e,
+                                            bool(through_collapse), bool(skip_rest)),
+                             out_t, t_end, label, progress)
     st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points, n_rest = out[:12]
     c0 = model.c0
     # prepend the initial state
