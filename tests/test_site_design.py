@@ -117,6 +117,18 @@ def test_a_sliding_block_never_collapses(clips):
     assert d.to_dict()["fragility"] is None
 
 
+def test_design_cli_says_a_lower_bound_is_one(folder):
+    # the sliding block of the test above through the CLI: its site line reads ">=" (the
+    # scan's top), and so does its safe PGA, beside the warning
+    res = runner.invoke(app, ["design", "--system", "mdof", "--column", "0.4,1.0",
+                              "--friction", "0.2", "--records", str(folder), "--ratio-steps",
+                              "9", "--tol", "0.05", "--bootstrap", "0", "--no-store"])
+    assert res.exit_code == 0, res.output
+    line = [x for x in res.stdout.splitlines() if x.startswith("site envelope")]
+    assert len(line) == 1 and "ap/ap,min >= 5.0000 -> safe PGA >= " in line[0]
+    assert "the safe PGA is a lower bound" in res.stderr
+
+
 def test_block_design_with_a_site_file(block_site):
     d = ra.design_system(ra.system("block", alpha=0.1, p=2.0), site=block_site)
     ratio, _ = site.curve_at(block_site, 2.0, "envelope")
