@@ -129,6 +129,18 @@ def test_design_cli_says_a_lower_bound_is_one(folder):
     assert "the safe PGA is a lower bound" in res.stderr
 
 
+def test_design_text_of_a_safe_pga_that_is_read_on_the_curve(block_site, capsys):
+    from rockarch.cli.site import _print_system_design
+
+    d = ra.design_system(ra.system("block", alpha=0.1, p=2.0), site=block_site)
+    assert not d.ratio_is_lower_bound
+    _print_system_design(d)
+    line = [x for x in capsys.readouterr().out.splitlines() if x.startswith("site envelope")]
+    assert line == [f"site envelope (equivalent SDOF on the block site OAS): ap/ap,min = "
+                    f"{d.ratio:.4f} -> safe PGA {d.pga_safe:.3f} m/s² = "
+                    f"{d.pga_safe / G:.3f} g"]
+
+
 def test_block_design_with_a_site_file(block_site):
     d = ra.design_system(ra.system("block", alpha=0.1, p=2.0), site=block_site)
     ratio, _ = site.curve_at(block_site, 2.0, "envelope")
