@@ -283,9 +283,7 @@ def design(
                f"(d/l' = {c.thickness / c.span:.4f}, d/l = {c.thickness / span:.4f}), "
                f"l' = {c.span:.4f} m, f' = {c.rise:.4f} m, p = {c.p:.4f} 1/s, "
                f"ap,min = {c.ap_min:.4f} m/s²")
-    low = res.ratio_is_lower_bound  # the top of the range: a lower bound
-    typer.echo(f"site {curve} at p: ap/ap,min {'>=' if low else '='} {res.ratio:.4f} -> safe "
-               f"PGA {'>= ' if low else ''}{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
+    typer.echo(f"site {curve} at p: {_safe_pga(res, g)}")
     if extra.get("fragility"):
         f = extra["fragility"]
         typer.echo(f"fragility of the replacement over {f['n_records']} records: median PGA "
@@ -463,6 +461,14 @@ def _command_line(opt: dict) -> str:
     return " ".join(shlex.quote(w) for w in words)
 
 
+def _safe_pga(res, g: float) -> str:
+    """'ap/ap,min = R -> safe PGA P m/s² = P/g g' of a design result; '>=' where the site
+    curve reaches the top of the ratio range (a lower bound)."""
+    low = res.ratio_is_lower_bound
+    return (f"ap/ap,min {'>=' if low else '='} {res.ratio:.4f} -> safe PGA "
+            f"{'>= ' if low else ''}{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
+
+
 def _print_system_design(res) -> None:
     slide = ""
     if res.ap_min_no_sliding is not None:
@@ -474,10 +480,7 @@ def _print_system_design(res) -> None:
     how = ("equivalent SDOF on the block site OAS" if res.method == "equivalent-sdof" else
            "over the records' collapse points")
     name = res.curve if res.curve == "envelope" else f"{res.percentile:g}th percentile"
-    low = res.ratio_is_lower_bound  # the top of the range: a lower bound
-    typer.echo(f"site {name} ({how}): ap/ap,min {'>=' if low else '='} {res.ratio:.4f} -> "
-               f"safe PGA {'>= ' if low else ''}{res.pga_safe:.3f} m/s² = "
-               f"{res.pga_safe / res.g:.3f} g")
+    typer.echo(f"site {name} ({how}): {_safe_pga(res, res.g)}")
     f = res.summary or {}
     for key in ("probability_at_pga", "pga_at_probability"):
         if key in f:
