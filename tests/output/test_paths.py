@@ -195,12 +195,12 @@ def test_animate_out_must_be_gif(tmp_path):
 def test_oas_plot_failure_leaves_no_netcdf(tmp_path, monkeypatch):
     """--out and --plot are written together: when the figure cannot be written, the
     NetCDF file is not left behind either."""
-    from rockarch.cli import oas
+    from rockarch.output import figures
 
     def broken(fig, path, **kw):
         raise OSError(28, "No space left on device", str(path))
 
-    monkeypatch.setattr(oas, "save_figure", broken)
+    monkeypatch.setattr(figures, "save_figure", broken)  # the command imports it when it plots
     res = runner.invoke(app, [*OAS, "--out", str(tmp_path / "a.nc"),
                               "--plot", str(tmp_path / "a.png")])
     line = _one_line_error(res)

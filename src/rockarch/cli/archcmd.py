@@ -23,7 +23,6 @@ from rockarch.cli._common import (
 )
 from rockarch.core.validate import in_range, positive
 from rockarch.output import check_outputs
-from rockarch.output.arch_plots import plot_mechanism
 from rockarch.systems import check_blocks
 
 
@@ -82,6 +81,7 @@ def arch(
                   mass_model=mass_model)
     res = analyse(a, blocks, g=g, direction=direction)
     if plot:
+        from rockarch.output.arch_plots import plot_mechanism
         plot_mechanism(res, plot)
     if json_out:
         print_json(res.to_dict())

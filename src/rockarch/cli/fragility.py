@@ -17,8 +17,6 @@ from rockarch.cli._common import echo_err, guarded, read_records
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
-from rockarch.output.figures import save_figure
-from rockarch.output.fragility_plots import display_units, plot_fragility
 from rockarch.risk import fragility as fr
 from rockarch.risk.record_scan import (
     MDOF_SEARCH_STEP,
@@ -131,6 +129,7 @@ def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
     vals = cc.float_list("--im-range", text)
     if vals.size != 2 or not (0 < vals[0] < vals[1]):
         raise ValueError(f"--im-range must be two numbers 0 < LO < HI, got {text!r}")
+    from rockarch.output.fragility_plots import display_units
     f = display_units(im)[1]
     return float(vals[0] / f), float(vals[1] / f)
 
@@ -188,6 +187,8 @@ def fragility(
         echo_err(f"warning: {exc}; no lognormal fit")
         frag = fr.Fragility(res, None, {})
     if plot is not None:
+        from rockarch.output.figures import save_figure
+        from rockarch.output.fragility_plots import plot_fragility
         save_figure(plot_fragility(frag, rng), plot)
     if out is not None:
         cc.write_json(out, frag.to_dict())

@@ -21,7 +21,6 @@ from rockarch.cli._common import (
 from rockarch.cli._groups import MOTION, SWEEP, SYSTEM, options, pick, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs, staged
-from rockarch.output.figures import plot_oas, save_figure
 from rockarch.output.tables import boundary_table
 from rockarch.spectra import oas as spectra
 
@@ -65,6 +64,7 @@ def oas(
         if out is not None:
             spectra.save(ds, out_tmp)
         if plot is not None:
+            from rockarch.output.figures import plot_oas, save_figure
             save_figure(plot_oas(ds).figure, plot_tmp)
     if json_out:
         print_json({

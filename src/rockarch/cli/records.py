@@ -14,8 +14,6 @@ from rockarch.motion import intensity, synthetic
 from rockarch.motion.suite import describe, read_suite
 from rockarch.motion.velocity_pulse import check_method
 from rockarch.output import check_outputs
-from rockarch.output.figures import save_figure
-from rockarch.output.suite_plots import plot_spectra
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                           help="Record suites: metadata and intensity measures.")
@@ -59,6 +57,8 @@ def info(
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping, method)
     if plot is not None:
+        from rockarch.output.figures import save_figure
+        from rockarch.output.suite_plots import plot_spectra
         save_figure(plot_spectra(suite, damping=damping), plot)
     if json_out:
         print_json({"csv": suite.csv, "apply_scale": apply_scale, "periods": list(per),

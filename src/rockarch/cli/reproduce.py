@@ -9,7 +9,6 @@ import typer
 from rockarch.cli._app import app
 from rockarch.cli._common import JSON_OPT, echo_err, guarded, print_json
 from rockarch.output import check_outputs
-from rockarch.paper.reproduce import reproduce
 
 
 @app.command("reproduce", short_help="The paper's tables and figures, paper vs computed.")
@@ -23,6 +22,8 @@ def reproduce_command(
     into OUT, with an index.html showing paper vs computed side by side."""
 
     check_outputs((out, "--out", "dir"))
+    from rockarch.paper.reproduce import reproduce
+
     reproduce(out, quick=quick, log=echo_err)
     index = out / "index.html"
     if json_out:

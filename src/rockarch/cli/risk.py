@@ -14,8 +14,6 @@ from rockarch.cli._common import guarded
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, options
 from rockarch.cli.fragility import IDA, run_ida
 from rockarch.output import check_outputs
-from rockarch.output.figures import save_figure
-from rockarch.output.risk_plots import plot_risk
 from rockarch.risk import fragility as fr
 from rockarch.risk import hazard as hz
 
@@ -99,6 +97,8 @@ def risk(
                     "the extrapolation of the hazard curve beyond its ends; without it "
                     f"lambda_c >= {result.lower_bound:.3g}/yr")
     if plot is not None:
+        from rockarch.output.figures import save_figure
+        from rockarch.output.risk_plots import plot_risk
         save_figure(plot_risk(curve, frag, result), plot)
     f, units = curve.factor, curve.units
     if json_out:

@@ -30,10 +30,6 @@ from rockarch.cli._groups import MDOF, MDOF_STEP, MOTION, RATIO, RUN, SDOF, opti
 from rockarch.core.validate import positive
 from rockarch.mdof.simulate import STEP_CHECK_MAX_BLOCKS
 from rockarch.output import check_outputs
-from rockarch.output.animation import animate as write_gif
-from rockarch.output.animation import check_options
-from rockarch.output.collapse_plots import plot_collapse
-from rockarch.output.figures import plot_response, save_figure
 from rockarch.systems import scale_to_ratio
 from rockarch.systems import system as make_system
 
@@ -66,6 +62,7 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
     mot = scale_to_ratio(shape, ratio, sysobj.ap_min)
     resp = sysobj.simulate(shape, ratio=ratio, **sim_kw)
     if plot is not None:
+        from rockarch.output.figures import plot_response, save_figure
         save_figure(plot_response(resp, mot), plot)
     s = {**resp.to_dict(), **(extra or {})}
     if json_out:
@@ -246,6 +243,7 @@ def simulate_mdof(
     check_outputs((plot, "--plot", "png"), (mechanism, "--mechanism", "png"))
     sysobj = _mdof_system(opts, t_free, g)
     if mechanism is not None:
+        from rockarch.output.collapse_plots import plot_collapse
         plot_collapse(sysobj.assembly, mechanism)
     header, extra = _mdof_header(sysobj.assembly), {"ap_min": sysobj.ap_min}
     if ramp:
@@ -278,6 +276,8 @@ def animate(
 ) -> None:
     """Animate an MDOF structure on a ground motion: blocks, open joints, a_g(t); after a
     collapse the blocks are followed as they fall, land and come to rest (new contacts)."""
+    from rockarch.output.animation import animate as write_gif
+    from rockarch.output.animation import check_options
 
     check_options(fps, frames, magnify)
     check_outputs((out, "--out", "gif"))

@@ -45,9 +45,6 @@ from rockarch.cli.risk import RISK, check_years, hazard_of
 from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system, site_risk, smallest_thickness
 from rockarch.output import check_outputs, staged
-from rockarch.output.figures import plot_site, save_figure
-from rockarch.output.fragility_plots import fragility_html
-from rockarch.output.report import write_report, write_system_report
 from rockarch.risk import fragility as fr
 from rockarch.spectra import characteristic as charsite
 from rockarch.spectra import site as site_mod
@@ -104,6 +101,7 @@ def site_oas(
     with staged(out, plot) as (out_tmp, plot_tmp):
         site_mod.save(ds, out_tmp)
         if plot is not None:
+            from rockarch.output.figures import plot_site, save_figure
             save_figure(plot_site(ds), plot_tmp)
     axis = {} if is_block else {"system": sysobj.name, "p_structure": sysobj.p_ref,
                                 "ap_min": sysobj.ap_min}
@@ -249,6 +247,7 @@ def design(
             extra["fragility"] = fr.design_summary(frag, pga=pga,
                                                    probability=_conditional(args), g=g)
             if report is not None:
+                from rockarch.output.fragility_plots import fragility_html
                 html_extra = fragility_html(frag, extra["fragility"], suite)
     if site_hazard is not None:
         years, extrapolate = args["years"], args["extrapolate"]
@@ -269,6 +268,7 @@ def design(
                   " ".join(f"--records {r}" for r in records))
                + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
                f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
+        from rockarch.output.report import write_report
         write_report(res, site_ds, report, command=cmd,
                      site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
@@ -429,6 +429,7 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
         risk = site_risk(res.fragility.fit, site_hazard, years=opt["years"],
                          probability=opt["probability"], extrapolate=opt["extrapolate"])
     if opt["report"] is not None:
+        from rockarch.output.report import write_system_report
         write_system_report(res, opt["report"], command=_command_line(opt), suite=suite)
     if json_out:
         print_json(res.to_dict() | ({} if risk is None else {"risk": risk.to_dict()}))

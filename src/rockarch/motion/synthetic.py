@@ -34,7 +34,7 @@ from dataclasses import asdict, dataclass
 
 import numba as nb
 import numpy as np
-from scipy import optimize, special, stats
+from scipy import optimize, special
 
 from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD, G
@@ -86,7 +86,7 @@ class RDKParameters:
 
 
 def _quantile_ratio(k: float) -> float:
-    q = stats.gamma.ppf([0.05, 0.45, 0.95], k)
+    q = special.gammaincinv(k, [0.05, 0.45, 0.95])  # Gamma(k, 1) quantiles
     return float((q[2] - q[0]) / q[1])
 
 
@@ -117,7 +117,7 @@ def modulation(p: RDKParameters, g: float = G) -> tuple[float, float, float]:
     log_k = optimize.brentq(lambda x: _quantile_ratio(math.exp(x)) - target,
                             math.log(_K_RANGE[0]), math.log(_K_RANGE[1]), xtol=1e-12)
     k = math.exp(log_k)
-    lam = float(stats.gamma.ppf(0.45, k)) / p.t_mid
+    lam = float(special.gammaincinv(k, 0.45)) / p.t_mid
     log_a1_sq = math.log(p.arias * 2.0 * g / math.pi) + k * math.log(lam) - special.gammaln(k)
     return math.exp(0.5 * log_a1_sq), (k + 1.0) / 2.0, lam / 2.0
 
@@ -188,7 +188,7 @@ def generate(params: RDKParameters, seed: int | np.random.Generator | None = Non
     dt = positive("dt", dt)
     a1, a2, a3 = modulation(params, g)
     k, lam = 2.0 * a2 - 1.0, 2.0 * a3
-    t_end = float(stats.gamma.ppf(END_QUANTILE, k)) / lam
+    t_end = float(special.gammaincinv(k, END_QUANTILE)) / lam
     n = int(math.ceil(t_end / dt)) + 1
     if n > 200_000:
         raise ValueError(f"the record would need {n} samples (t_end = {t_end:.4g} s at dt = "
@@ -386,14 +386,33 @@ _ZETA_F = (1.4250, 5.7208, 0.02, 0.98)  # Beta(a, b), then loc + scale·x
 #: * ``f_slope`` f' [Hz/s]: two-sided exponential on [−2, 0.5], density 4.8512·e^(6.7729 x)
 #:   for x < 0 and 4.8512·e^(−17.095 x) for x ≥ 0 (mean −0.089, sd 0.159);
 #: * ``zeta_f`` = 0.02 + 0.98·Beta(1.4250, 5.7208) (mean 0.215).
-MARGINALS = {
-    "ln_arias": stats.norm(*_LN_ARIAS),
-    "d5_95": stats.beta(*_D5_95[:2], loc=_D5_95[2], scale=_D5_95[3]),
-    "t_mid": stats.beta(*_T_MID[:2], loc=_T_MID[2], scale=_T_MID[3]),
-    "f_mid": stats.gamma(_F_MID[0], scale=_F_MID[1]),
-    "f_slope": TwoSidedExponential(a=17.095, b=6.7729, c=4.8512, lo=-2.0, hi=0.5),
-    "zeta_f": stats.beta(*_ZETA_F[:2], loc=_ZETA_F[2], scale=_ZETA_F[3]),
-}
+#:
+#: (Built on first use: scipy.stats takes half a second to import, which every command of
+#: the command line would otherwise pay.)
+MARGINALS: dict
+
+
+@functools.cache
+def _marginals() -> dict:
+    from scipy import stats
+
+    return {
+        "ln_arias": stats.norm(*_LN_ARIAS),
+        "d5_95": stats.beta(*_D5_95[:2], loc=_D5_95[2], scale=_D5_95[3]),
+        "t_mid": stats.beta(*_T_MID[:2], loc=_T_MID[2], scale=_T_MID[3]),
+        "f_mid": stats.gamma(_F_MID[0], scale=_F_MID[1]),
+        "f_slope": _F_SLOPE,
+        "zeta_f": stats.beta(*_ZETA_F[:2], loc=_ZETA_F[2], scale=_ZETA_F[3]),
+    }
+
+
+def __getattr__(name: str):
+    if name == "MARGINALS":
+        return _marginals()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+_F_SLOPE = TwoSidedExponential(a=17.095, b=6.7729, c=4.8512, lo=-2.0, hi=0.5)
 
 #: Correlation of the six parameters (order of :data:`MARGINALS`) in standard normal space,
 #: ν_i = Φ⁻¹(F_i(θ_i)): the correlation matrix of the total errors of RDK 2010's regression
@@ -431,7 +450,7 @@ def parameters_from_normal(z) -> RDKParameters:
         arias=math.exp(_LN_ARIAS[0] + _LN_ARIAS[1] * float(z[0])) * G_STANDARD,
         d5_95=beta(u[1], *_D5_95), t_mid=beta(u[2], *_T_MID),
         f_mid=_F_MID[1] * float(special.gammaincinv(_F_MID[0], u[3])),
-        f_slope=float(MARGINALS["f_slope"].ppf(u[4])), zeta_f=beta(u[5], *_ZETA_F))
+        f_slope=float(_F_SLOPE.ppf(u[4])), zeta_f=beta(u[5], *_ZETA_F))
 
 
 def draw_parameters(rng: np.random.Generator, *, f_max: float = math.inf) -> RDKParameters:
