@@ -9,10 +9,12 @@ A test that checks an exact construction opts out with ``@pytest.mark.unperturbe
 """
 
 import atexit
+import importlib
 import os
 import shutil
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import pytest
@@ -60,3 +62,79 @@ def short_records(tmp_path_factory):
         m = ra.el_centro(c)
         write_at2(d / f"ELC{c}-12s.AT2", ra.GroundMotion(m.t[:1200], m.a[:1200]))
     return d
+
+
+# ------------------------------------------------------- the stepper compiling meanwhile
+#: tests/warm_kernels.py --overlap (``make test``) compiles the general contact stepper in the
+#: background while the suite starts; this file holds that process's id until it ends.
+_WARMING = Path(__file__).resolve().parents[1] / ".pytest_cache" / "warm-graph.pid"
+#: The test modules that run the general contact stepper (or its parts): run last, and wait
+#: for the background compilation; any other test that reaches the stepper waits too (below).
+GRAPH_MODULES = frozenset({
+    "mdof/test_cli.py", "mdof/test_factor_reuse.py", "mdof/test_mdof.py",
+    "mdof/test_progress.py", "mdof/test_retry.py", "mdof/test_statics_cache.py",
+    "output/test_animation.py", "output/test_figures.py", "test_docs_blocks.py",
+    "test_fragility_cli.py", "test_jit_cache.py", "test_readme.py", "test_site_design.py",
+    "validation/test_assemblies.py", "validation/test_assembly_cli.py",
+    "validation/test_friction.py", "validation/test_new_contacts.py",
+    "validation/test_oracle_drivers.py", "validation/test_pymunk_dynamic.py",
+    "validation/test_rest_skip.py",
+})
+
+
+def _compiling() -> bool:
+    """Whether the background compilation of the stepper still runs."""
+    try:
+        pid = int(_WARMING.read_text())
+    except (OSError, ValueError):
+        return False
+    try:
+        with open(f"/proc/{pid}/stat") as f:  # Linux: an ended process may linger as a zombie
+            return f.read().rpartition(")")[2].split()[0] != "Z"
+    except OSError:
+        pass
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True
+    return True
+
+
+def wait_for_the_stepper(limit: float = 600.0) -> None:
+    """Wait (at most ``limit`` s) while the stepper compiles in the background: compiling it
+    here as well would take as long and slow both."""
+    end = time.monotonic() + limit
+    while _compiling() and time.monotonic() < end:
+        time.sleep(0.5)
+
+
+if _compiling():  # every use of the stepper passes its compile notice first
+    _sim = importlib.import_module("rockarch.mdof.simulate")
+    _announce = _sim._announce
+
+    def _announce_after_the_warm(chain: bool) -> None:
+        if not chain:
+            wait_for_the_stepper()
+        _announce(chain)
+
+    _sim._announce = _announce_after_the_warm
+
+
+def _graph_module(item) -> bool:
+    try:
+        return item.path.relative_to(Path(__file__).parent).as_posix() in GRAPH_MODULES
+    except ValueError:  # a test outside tests/
+        return False
+
+
+def pytest_collection_modifyitems(config, items):
+    """The stepper's tests last (stable): the others run while it compiles."""
+    items.sort(key=_graph_module)
+
+
+@pytest.fixture(autouse=True)
+def _after_the_warm(request):
+    if _graph_module(request.node):
+        wait_for_the_stepper()
