@@ -22,9 +22,9 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
@@ -35,6 +35,9 @@ from rockarch.risk import fragility as fr
 from rockarch.risk import hazard as hz
 from rockarch.spectra import site as site_mod
 from rockarch.systems import check_system
+
+if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
+    import xarray as xr
 
 
 @dataclass(frozen=True)
@@ -189,6 +192,8 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
         search for collapse islands below the grid's first collapse).
     """
     check_system(system, "system")
+    import xarray as xr
+
     if site is not None and not isinstance(site, xr.Dataset):
         raise TypeError(f"site must be a site OAS (xarray.Dataset of rockarch.spectra.site."
                         f"load), got {type(site).__name__}")

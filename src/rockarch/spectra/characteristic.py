@@ -30,13 +30,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from rockarch.motion.intensity import mean_period
 from rockarch.motion.signals import GroundMotion
 from rockarch.spectra import site
+
+if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
+    import xarray as xr
 
 #: Constant C of the after-impact branch, Eq. (11.24), our own (derived, not fitted, not
 #: from a paper): the base moves by the half-width R·sin(alpha) under a centre of mass at

@@ -11,10 +11,9 @@ records) are never filled in.
 from __future__ import annotations
 
 import math
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import xarray as xr
 from tqdm.auto import tqdm
 
 from rockarch.core import __version__, sweep
@@ -23,6 +22,9 @@ from rockarch.core.constants import OAS_TOL as TOL
 from rockarch.core.paths import atomic_write
 from rockarch.core.validate import tolerance
 from rockarch.motion.signals import GroundMotion
+
+if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
+    import xarray as xr
 
 
 class OASSystem(Protocol):
@@ -118,6 +120,8 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     finally:
         if owned:
             executor.close()
+    import xarray as xr
+
     ds = xr.Dataset(
         {
             "overturned": (("p", "ratio"), over),
@@ -189,6 +193,8 @@ def read_netcdf(path) -> xr.Dataset:
     path = Path(path)
     if not path.exists():
         raise ValueError(f"{path}: no such file")
+    import xarray as xr
+
     try:
         ds = xr.load_dataset(path)
     except Exception as exc:  # noqa: BLE001 - any reader failure is a bad file for the user

@@ -14,9 +14,9 @@ import hashlib
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from rockarch import systems
 from rockarch.core import __version__, sweep
@@ -26,6 +26,9 @@ from rockarch.core.sweep.limits import check_simulations
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.suite import PGA_RANGE, read_suite, record_files
 from rockarch.spectra import oas as spectra
+
+if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
+    import xarray as xr
 
 KIND = "rockarch-site-oas"
 FORMAT_VERSION = 1
@@ -129,6 +132,8 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     env, char = curves(b, percentile)
     names = [m.name for m in motions]
     hashes = list(hashes) if hashes is not None else [m.fingerprint() for m in motions]
+    import xarray as xr
+
     ds = xr.Dataset(
         {
             "overturned": (("record", "p", "ratio"),
