@@ -67,3 +67,24 @@ def test_first_compilation_is_announced_once(tmp_path, monkeypatch):
     index.unlink()
     _jit_cache.announce_compile(kernel, "a kernel", 5)
     assert len(lines) == 1
+
+
+def test_a_stale_warm_marker_is_not_waited_for(tmp_path, monkeypatch):
+    """make test's background compilation (tests/warm_kernels.py --overlap) is waited for
+    while its process runs, never after it ended (a marker left by a killed run)."""
+    import subprocess
+    import sys
+
+    from tests import conftest
+
+    marker = tmp_path / "warm-graph.pid"
+    monkeypatch.setattr(conftest, "_WARMING", marker)
+    assert not conftest._compiling()  # no marker
+    marker.write_text(str(os.getpid()))
+    assert conftest._compiling()  # a running process
+    done = subprocess.Popen([sys.executable, "-c", "pass"])
+    done.wait()
+    marker.write_text(str(done.pid))
+    assert not conftest._compiling()  # an ended one
+    marker.write_text("garbage")
+    assert not conftest._compiling()
