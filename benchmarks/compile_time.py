@@ -6,7 +6,12 @@ module passes over each compiled function's module with its callees linked in, a
 code. The plain reference is the group's total: the four parts sum to it. Not part of the
 test suite (docs/performance.md, "Compile time").
 
+``tuples`` instead measures what a named tuple of arrays passed by value costs (the way the
+stepper's kernel data travel): a chain of 5 small kernels, each calling the next, compiled
+with a tuple of 40 arrays, of 8 arrays, and with the 3 arrays each kernel reads.
+
 Run:  .venv/bin/python benchmarks/compile_time.py [graph|rest]    (~1.5 min for graph)
+      .venv/bin/python benchmarks/compile_time.py tuples          (~10 s)
 """
 
 from __future__ import annotations
@@ -55,7 +60,48 @@ print(json.dumps({"total": total, **parts, "top_module_passes": top}))
 """
 
 
+TUPLES = """
+import sys, time
+from typing import NamedTuple
+import numpy as np
+import numba as nb
+
+n, mode, depth = int(sys.argv[1]), sys.argv[2], 5
+W = NamedTuple("W", [(f"a{i}", np.ndarray) for i in range(n)])
+src = []
+for d in range(depth):
+    if mode == "tuple":  # each kernel reads 3 fields of the tuple and passes it on
+        nxt = f"f{d + 1}(w, k)" if d < depth - 1 else "0.0"
+        body = f"w.a{d}[i] * w.a{d + 1}[i] + w.a{d + 2}[i]"
+        args = "w, k"
+    else:  # each kernel gets the 3 arrays it reads
+        nxt = f"f{d + 1}(y, z, x, k)" if d < depth - 1 else "0.0"
+        body, args = "x[i] * y[i] + z[i]", "x, y, z, k"
+    src.append(f"@nb.njit\\ndef f{d}({args}):\\n    s = 0.0\\n    for i in range(k):\\n"
+               f"        s += {body}\\n    return s + {nxt}\\n")
+ns = {"nb": nb}
+exec("\\n".join(src), ns)
+w = W(*[np.ones(10) for _ in range(n)])
+t = time.perf_counter()
+ns["f0"](w, 10) if mode == "tuple" else ns["f0"](w.a0, w.a1, w.a2, 10)
+print(time.perf_counter() - t)
+"""
+
+
+def tuples() -> None:
+    """Compile time of a chain of 5 kernels: a named tuple of n arrays vs 3 arrays."""
+    print("a chain of 5 kernels, each calling the next (fresh process each, no cache):")
+    for n, mode in ((40, "tuple"), (8, "tuple"), (40, "arrays")):
+        out = subprocess.run([sys.executable, "-c", TUPLES, str(n), mode], check=True,
+                             capture_output=True, text=True)
+        what = f"a named tuple of {n} arrays" if mode == "tuple" else "the 3 arrays it reads"
+        print(f"  each passed {what:32s} {float(out.stdout):5.2f} s")
+
+
 def main(group: str = "graph") -> None:
+    if group == "tuples":
+        tuples()
+        return
     with tempfile.TemporaryDirectory(prefix="rockarch-jit-") as cache:
         env = dict(os.environ, ROCKARCH_JIT_CACHE=cache)
         env.pop("NUMBA_CACHE_DIR", None)
