@@ -66,7 +66,8 @@ def short_records(tmp_path_factory):
 
 # ------------------------------------------------------- the stepper compiling meanwhile
 #: tests/warm_kernels.py --overlap (``make test``) compiles the general contact stepper in the
-#: background while the suite starts; this file holds that process's id until it ends.
+#: background while the suite starts; this file (its ``MARKER``) holds that process's id
+#: until it ends.
 _WARMING = Path(__file__).resolve().parents[1] / ".pytest_cache" / "warm-graph.pid"
 #: The test modules that run the general contact stepper (or its parts): run last, and wait
 #: for the background compilation; any other test that reaches the stepper waits too (below).

@@ -81,32 +81,25 @@ def main(argv: list[str]) -> int:
             if argv[1:] == ["--marker"]:
                 MARKER.unlink(missing_ok=True)
         return 0
-    if argv == ["--overlap"]:
-        t0 = time.perf_counter()
+    if argv not in ([], ["--overlap"]):
+        sys.exit(f"usage: {os.path.basename(__file__)} [--overlap | GROUP]")
+    t0 = time.perf_counter()
+    overlap = argv == ["--overlap"]
+    if overlap:
         MARKER.parent.mkdir(exist_ok=True)
         # outlives this process; Ctrl-C on the suite ends it too (same process group)
         bg = subprocess.Popen([sys.executable, __file__, BACKGROUND, "--marker"],
                               stdout=subprocess.DEVNULL)
         MARKER.write_text(str(bg.pid))
-        rest = [name for name in GROUPS if name != BACKGROUND]
-        failed = [name for name in rest
-                  if subprocess.run([sys.executable, __file__, name]).returncode]
-        print(f"numba kernels but the general contact stepper compiled or loaded in "
-              f"{time.perf_counter() - t0:.0f} s; the stepper goes on in the background "
-              f"(process {bg.pid})"
-              + (f" (group {', '.join(failed)} failed: the suite compiles it itself)"
-                 if failed else ""))
-        return 0
-    if argv:
-        sys.exit(f"usage: {os.path.basename(__file__)} [--overlap | GROUP]")
-    t0 = time.perf_counter()
-    procs = [subprocess.Popen([sys.executable, __file__, name]) for name in GROUPS]
-    failed = [name for name, p in zip(GROUPS, procs, strict=True) if p.wait()]
-    print(f"numba kernels compiled or loaded from the cache in {time.perf_counter() - t0:.0f} s"
+    names = [name for name in GROUPS if not (overlap and name == BACKGROUND)]
+    procs = [subprocess.Popen([sys.executable, __file__, name]) for name in names]
+    failed = [name for name, p in zip(names, procs, strict=True) if p.wait()]
+    print(("numba kernels but the general contact stepper" if overlap else "numba kernels")
+          + f" compiled or loaded from the cache in {time.perf_counter() - t0:.0f} s"
+          + (f"; the stepper goes on in the background (process {bg.pid})" if overlap else "")
           + (f" (group {', '.join(failed)} failed: the suite compiles it itself)"
              if failed else ""))
     return 0
-
 
 if __name__ == "__main__":
     sys.exit(main(sys.argv[1:]))
