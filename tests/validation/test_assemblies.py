@@ -191,6 +191,8 @@ def test_bad_polygons(poly, msg):
     ([_rect(0, 0, 1, 1), _rect(3, 0.5, 1, 1)], "block 1 touches nothing"),
     ([_rect(0, 0, 1, 1), _rect(0.6, 1, 1, 1)], "block 1 falls"),
     ([_rect(0, -0.5, 1, 1)], "below the ground"),
+    # the top block's centroid right above the base's corner: ap,min = 0, no margin
+    ([_rect(0, 0, 1, 1), _rect(0.5, 1, 1, 1)], "only just balances"),
 ])
 def test_bad_assemblies(polys, msg):
     with pytest.raises(ValueError, match=msg):

@@ -117,6 +117,11 @@ def assemble(*, name: str, kind: str, mass, inertia, centroid, polygons, joints,
     if not (math.isfinite(fric.ap_min) and math.isfinite(ref.p)):
         raise ValueError("the structure has no rocking mechanism below "
                          f"{LAMBDA_CAP:g} g: nothing can move")
+    if fric.ap_min <= 1e-9 * g or ref.delta <= 1e-9:  # a centroid right above its pivot
+        who = ", ".join(names[i] for i in np.flatnonzero(fric.moving)) or "a block"
+        raise ValueError("the structure cannot stand under gravity with any margin: "
+                         f"ap,min = 0 ({who} only just balances on a corner; neutral "
+                         "equilibrium)")
     pts = np.concatenate([np.asarray(p, float) for p in polygons])
     size = float(np.ptp(pts, axis=0).max())
     moving = np.flatnonzero(fric.moving).tolist()
