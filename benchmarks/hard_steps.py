@@ -56,8 +56,7 @@ def main() -> None:
         if ws.sw.state[7] > p0:  # the law's residual where the continuation ran
             nr = 3 * m.n0.shape[0] + 2 * ws.cnt[0]
             v = np.column_stack([args_[4], args_[5], args_[6]]).ravel()
-            res = law_residual(nr, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0,
-                               ws.tn1, ws.tmu, args_[10], args_[11], ws.sw, v)
+            res = law_residual(nr, ws.rows, ws.bias, ws.lam, args_[10], args_[11], ws.sw, v)
             residuals.append((its < 0, res / args_[12]))
         return its
 

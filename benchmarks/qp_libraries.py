@@ -92,15 +92,16 @@ def problem(m, inputs):
     sw = ws.sw
     nb = m.mass.shape[0]
     rows, cols, vals = [], [], []
+    wr = ws.rows
     for r in range(nr):
-        for body, jac in ((ws.rba[r], ws.ja[r]), (ws.rbb[r], ws.jb[r])):
+        for body, jac in ((wr.rba[r], wr.ja[r]), (wr.rbb[r], wr.jb[r])):
             if body >= 0:
                 rows += [r] * 3
                 cols += [3 * body, 3 * body + 1, 3 * body + 2]
                 vals += list(jac)
     jmat = sp.csr_matrix((vals, (rows, cols)), shape=(nr, 3 * nb))
     b = ws.bias[:nr].copy()
-    tn0, tn1, tmu = ws.tn0[:nr], ws.tn1[:nr], ws.tmu[:nr]
+    tn0, tn1, tmu = wr.tn0[:nr], wr.tn1[:nr], wr.tmu[:nr]
     cone = []  # (normal row, tangential row, ±1)
     for t in range(nr):
         if tn0[t] >= 0:

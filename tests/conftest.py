@@ -72,7 +72,8 @@ _WARMING = Path(__file__).resolve().parents[1] / ".pytest_cache" / "warm-graph.p
 #: The test modules that run the general contact stepper (or its parts): run last, and wait
 #: for the background compilation; any other test that reaches the stepper waits too (below).
 GRAPH_MODULES = frozenset({
-    "mdof/test_cli.py", "mdof/test_factor_reuse.py", "mdof/test_mdof.py",
+    "mdof/test_cli.py", "mdof/test_factor_reuse.py", "mdof/test_kernel_records.py",
+    "mdof/test_mdof.py",
     "mdof/test_progress.py", "mdof/test_retry.py", "mdof/test_statics_cache.py",
     "output/test_animation.py", "output/test_figures.py", "test_docs_blocks.py",
     "test_fragility_cli.py", "test_jit_cache.py", "test_readme.py", "test_site_design.py",

@@ -266,8 +266,8 @@ def test_sliding_joint_contact_is_the_overlap_of_the_faces():
     for shift in (-0.3, -0.5):
         x, y, ph = m.c0[:, 0] + shift, m.c0[:, 1].copy(), np.zeros(1)
         off = gs.geometry(1, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu,
-                          ws.gap, ws.ja, ws.jb)
-        jrows = ws.ja if m.ba[0] == 0 else ws.jb
+                          ws.gap, ws.rows.ja, ws.rows.jb)
+        jrows = ws.rows.ja if m.ba[0] == 0 else ws.rows.jb
         if shift == -0.3:
             assert off == 0
             assert np.allclose(ws.gap[0, :2], 0.0, atol=1e-12)

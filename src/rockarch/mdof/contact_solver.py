@@ -29,10 +29,11 @@ with the contact law met within (tol_u, tol_l) or counts as failed.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 import numba as nb
 import numpy as np
+
+from rockarch.core.jit_struct import JitStruct, jit_struct
 
 #: A pivot of the banded LU below this fraction of its row's largest entry: H is singular.
 PIVOT_TOL = 1e-13
@@ -71,8 +72,25 @@ PROX_DROP = 10.0
 PROX_UP = 3.0
 
 
-class SolverWork(NamedTuple):
-    """Work arrays of the contact solve (one per run and stepper workspace)."""
+@jit_struct
+class Rows(JitStruct):
+    """The step's rows (R of them): a joint's three (corner 0, corner 1, tangential), then a
+    point contact's two (normal, tangential); passed by reference
+    (:mod:`rockarch.core.jit_struct`)."""
+
+    rba: np.ndarray  # (R,) body of the row's a side (−1: ground or support)
+    rbb: np.ndarray  # (R,) body of its b side
+    ja: np.ndarray  # (R, 3) the row's Jacobian on body a (x, y, rotation) ...
+    jb: np.ndarray  # (R, 3) ... and on body b
+    tn0: np.ndarray  # (R,) normal rows that bound a tangential row (−1: a normal row)
+    tn1: np.ndarray
+    tmu: np.ndarray  # (R,) friction coefficient of a tangential row
+
+
+@jit_struct
+class SolverWork(JitStruct):
+    """Work arrays of the contact solve (one per run and stepper workspace), passed by
+    reference (:mod:`rockarch.core.jit_struct`)."""
 
     pos: np.ndarray  # (nb,) place of every body in the band order
     vf: np.ndarray  # (3nb,) free velocities, body j at 3j..3j+2
@@ -278,10 +296,12 @@ def _ssn_terms(r, st, tn0, tn1, tmu, mu_r):
 
 
 @nb.njit(cache=True)
-def _ssn_assemble(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, kd):
+def _ssn_assemble(nbod, n_rows, rows, bias, st, ie, sw, kd):
     """The full band of H = M + ε⁻¹[Σ_closed J_nᵀJ_n + Σ_stick J_tᵀJ_t
     + Σ_slide s·μ·J_tᵀ·Σ_(closed n of its joint) J_n] (docs/theory.md Eq. (9.10)) in sw.lu,
     and its right-hand side M·v_free − ε⁻¹·(the same rows times their biases) in sw.rhs."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     n = 3 * nbod
     lu = sw.lu
     for i in range(n):
@@ -315,8 +335,10 @@ def _ssn_assemble(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, s
 
 
 @nb.njit(cache=True)
-def _ssn_assemble_rhs(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw):
+def _ssn_assemble_rhs(nbod, n_rows, rows, bias, st, ie, sw):
     """The right-hand side of :func:`_ssn_assemble` alone (kept factors)."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     for i in range(3 * nbod):
         sw.rhs[i] = sw.mdiag[i] * sw.vf[i]
     for r in range(n_rows):
@@ -389,9 +411,11 @@ def band_lu_solve(n, a, kd, x):
 
 
 @nb.njit(cache=True)
-def _ssn_impulses(n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, lam):
+def _ssn_impulses(n_rows, rows, bias, st, ie, sw, lam):
     """u = J·v + b at sw.v and the impulses of the current states: closed normal and
     sticking rows −u/ε, sliding rows s·μ·ΣΛ_n of their joint, the others 0."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     for r in range(n_rows):
         sw.u[r] = row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r]
     for r in range(n_rows):
@@ -411,8 +435,10 @@ def _ssn_impulses(n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, lam
 
 
 @nb.njit(cache=True)
-def _ssn_times(nbod, n_rows, rba, rbb, ja, jb, st, tn0, tn1, tmu, ie, sw, v, out):
+def _ssn_times(nbod, n_rows, rows, st, ie, sw, v, out):
     """out = H·v for the operator of :func:`_ssn_assemble` at the current Jacobian."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     for i in range(3 * nbod):
         out[i] = sw.mdiag[i] * v[i]
     for r in range(n_rows):
@@ -433,11 +459,11 @@ def _ssn_times(nbod, n_rows, rba, rbb, ja, jb, st, tn0, tn1, tmu, ie, sw, v, out
 
 
 @nb.njit(cache=True)
-def _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, lref,
-               tol, key):
+def _ssn_solve(nbod, n_rows, rows, bias, st, ie, sw, lref, tol, key):
     """sw.v = H⁻¹·rhs for the states ``st``: on the kept LU factors if they were made for
     the same states (refined against the current Jacobian), else on new ones. False if H
     cannot be factorised in the band."""
+    rba, rbb, tn0, tmu = rows.rba, rows.rbb, rows.tn0, rows.tmu
     n = 3 * nbod
     same = sw.state[0] == 2 and sw.frho[0] == key
     if same:
@@ -456,7 +482,7 @@ def _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, 
             if 2 * kd + 1 > sw.lu.shape[1]:
                 sw.state[0] = 0
                 return False
-        _ssn_assemble(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, kd)
+        _ssn_assemble(nbod, n_rows, rows, bias, st, ie, sw, kd)
         sw.state[2] += 1
         if not band_lu(n, sw.lu, kd, sw.lurow):
             sw.state[0] = 0
@@ -477,10 +503,10 @@ def _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, 
         return True
     # the kept factors: refine against this Jacobian and right-hand side
     kd = sw.state[1]
-    _ssn_assemble_rhs(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw)
+    _ssn_assemble_rhs(nbod, n_rows, rows, bias, st, ie, sw)
     prev = math.inf
     for _ in range(REFINE_MAX + 1):
-        _ssn_times(nbod, n_rows, rba, rbb, ja, jb, st, tn0, tn1, tmu, ie, sw, sw.v, sw.d)
+        _ssn_times(nbod, n_rows, rows, st, ie, sw, sw.v, sw.d)
         for j in range(nbod):
             for c in range(3):
                 sw.x[3 * sw.pos[j] + c] = sw.rhs[3 * j + c] - sw.d[3 * j + c]
@@ -499,16 +525,16 @@ def _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw, 
         prev = err
     sw.state[0] = 0
     sw.state[4] += 1
-    return _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, ie, sw,
-                      lref, tol, key)
+    return _ssn_solve(nbod, n_rows, rows, bias, st, ie, sw, lref, tol, key)
 
 
 @nb.njit(cache=True)
-def _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l, it, prox):
+def _ssn_classify(n_rows, st, rows, lam, sw, tol_u, tol_l, it, prox):
     """New states from the impulses and velocities (with hysteresis: a state changes only
     when it is violated by more than the tolerance). In a proximal step (``prox``) a
     sliding row's direction is that of its proximal velocity u + (ε + ρ)·Λ_t (docs/theory.md
     Eq. (9.9)). Returns whether any changed."""
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     changed = False
     ie = sw.ie
     for r in range(n_rows):
@@ -570,8 +596,7 @@ def _wrr(r, rba, rbb, ja, jb, sw):
 
 
 @nb.njit(cache=True)
-def semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol_u, tol_l,
-               lref, max_it, key):
+def semismooth(nbod, n_rows, rows, bias, lam, sw, tol_u, tol_l, lref, max_it, key):
     """The semismooth Newton method on the rows' states (module docstring; docs/theory.md
     Eq. (9.8)) with the rows' 1/ε in sw.ie: states change where violated by more than
     (tol_u, tol_l) (a closed row in tension, an open one that moves in, a sticking row beyond
@@ -579,6 +604,7 @@ def semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol
     ``sw.st`` and ``lam`` hold the warm start (the last step's states and impulses); ``key``
     names the proximal weight of sw.ie (LU factors are reused only under the same key).
     Returns the iterations (negative: not settled within ``max_it``)."""
+    rba, rbb, ja, jb, tn0, tmu = rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0, rows.tmu
     n = 3 * nbod
     st = sw.st
     # u at the warm start v = v_free + M⁻¹·Jᵀ·Λ
@@ -597,14 +623,13 @@ def semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol
     sw.state[5] += 1
     for it in range(max_it):
         sw.state[6] += 1
-        changed = _ssn_classify(n_rows, st, tn0, tn1, tmu, lam, sw, tol_u, tol_l,
+        changed = _ssn_classify(n_rows, st, rows, lam, sw, tol_u, tol_l,
                                 it if key == 0.0 else SSN_FREEZE, key != 0.0)
         if it > 0 and not changed:
             return it
-        if not _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, sw.ie, sw,
-                          lref, tol_sol, key):
+        if not _ssn_solve(nbod, n_rows, rows, bias, st, sw.ie, sw, lref, tol_sol, key):
             return -1 - it
-        _ssn_impulses(n_rows, rba, rbb, ja, jb, bias, st, tn0, tn1, tmu, sw.ie, sw, lam)
+        _ssn_impulses(n_rows, rows, bias, st, sw.ie, sw, lam)
     return -max_it
 
 
@@ -616,8 +641,7 @@ def _weights(n_rows, tn0, eps_n, eps_t, rho, ie):
 
 
 @nb.njit(cache=True)
-def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t, sw, tol_u,
-          tol_l, lref):
+def solve(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol_u, tol_l, lref):
     """The step's contact problem (module docstring): v⁺ in sw.v from the free velocities
     in sw.vf, the impulses in ``lam`` (their last values on entry: the warm start).
 
@@ -632,6 +656,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
     residual of the original contact law in the rows' velocities, is then below that
     tolerance and Λ solves the original problem to it.
     Returns the semismooth iterations (negative: failed)."""
+    rba, rbb, ja, jb, tn0 = rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0
     if sw.state[1] <= REFINE_KD:
         sw.state[0] = 0  # a narrow band: refactorised at the step's Jacobian (REFINE_KD)
     lamk = sw.lamk
@@ -642,8 +667,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
         lamk[r] = lam[r]  # the warm start, kept for the proximal steps
         sst2[r] = st[r]
     _weights(n_rows, tn0, eps_n, eps_t, 0.0, sw.ie)
-    its = semismooth(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, sw, tol_u,
-                     tol_l, lref, SSN_FIRST, 0.0)
+    its = semismooth(nbod, n_rows, rows, bias, lam, sw, tol_u, tol_l, lref, SSN_FIRST, 0.0)
     if its >= 0:
         return its
     total = SSN_FIRST
@@ -658,8 +682,7 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
         for r in range(n_rows):
             bias2[r] = bias[r] - rho * lamk[r]
         _weights(n_rows, tn0, eps_n, eps_t, rho, sw.ie)
-        its = semismooth(nbod, n_rows, rba, rbb, ja, jb, sw.bias2, lam, tn0, tn1, tmu, sw,
-                         tol_u, tol_l, lref, SSN_MAX, rho)
+        its = semismooth(nbod, n_rows, rows, sw.bias2, lam, sw, tol_u, tol_l, lref, SSN_MAX, rho)
         if its < 0:
             total += SSN_MAX
             for r in range(n_rows):  # back to the last proximal iterate, more weight on it
@@ -694,12 +717,14 @@ def solve(nbod, n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t
 
 
 @nb.njit(cache=True)
-def law_residual(n_rows, rba, rbb, ja, jb, bias, lam, tn0, tn1, tmu, eps_n, eps_t, sw, v):
+def law_residual(n_rows, rows, bias, lam, eps_n, eps_t, sw, v):
     """The largest natural residual of the step's contact law (docs/theory.md Eqs.
     (9.1)–(9.3) with the regularisation ε) at the impulses ``lam`` and velocities ``v`` [m/s]:
     |min(W_rr·Λ_n, u_n + ε_n·Λ_n)| on a corner row, W_rr·|Λ_t − proj_[−β, β](Λ_t − (u_t +
     ε_t·Λ_t)/W_rr)| on a tangential one, β = μ·ΣΛ_n⁺ (u = J·v + b; μ = ∞ rows skipped). A
     diagnostic of the solve (tests, benchmarks/hard_steps.py), not used by it."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     worst = 0.0
     for r in range(n_rows):
         u = row_dot(r, rba, rbb, ja, jb, v) + bias[r]
@@ -731,8 +756,8 @@ def _bound(c0, c1, lo, hi):
 
 
 @nb.njit(cache=True)
-def rest_interval(nbod, n_rows, rba, rbb, ja, jb, bias, tn0, tn1, tmu, eps_n, eps_t, sw,
-                  tol_u, tol_l, lref, h, g, v_rest, lam0, lam1):
+def rest_interval(nbod, n_rows, rows, bias, eps_n, eps_t, sw, tol_u, tol_l, lref, h, g, v_rest,
+                  lam0, lam1):
     """The mean ground accelerations ā of a step for which a structure at rest stays at
     rest (docs/theory.md Eq. (9.11)): with v = 0 before the step and the rows' present
     states, the step's solution (9.7) and its impulses are affine in ā, Λ = Λ₀ + ā·Λ₁
@@ -743,6 +768,7 @@ def rest_interval(nbod, n_rows, rba, rbb, ja, jb, bias, tn0, tn1, tmu, eps_n, ep
     the regularised rows stays below it; a motion that starts under an unbalanced
     acceleration a exceeds it after one step once a > v_rest/h). Returns (lo, hi); lo > hi:
     the states do not hold."""
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     lo, hi = -math.inf, math.inf
     for r in range(n_rows):
         if tn0[r] < 0:
@@ -756,11 +782,9 @@ def rest_interval(nbod, n_rows, rba, rbb, ja, jb, bias, tn0, tn1, tmu, eps_n, ep
             sw.vf[3 * j] = -h * case
             sw.vf[3 * j + 1] = -h * g
             sw.vf[3 * j + 2] = 0.0
-        if not _ssn_solve(nbod, n_rows, rba, rbb, ja, jb, bias, sw.st, tn0, tn1, tmu, sw.ie,
-                          sw, lref, tol_sol, 0.0):
+        if not _ssn_solve(nbod, n_rows, rows, bias, sw.st, sw.ie, sw, lref, tol_sol, 0.0):
             return 1.0, -1.0
-        _ssn_impulses(n_rows, rba, rbb, ja, jb, bias, sw.st, tn0, tn1, tmu, sw.ie, sw,
-                      lam0 if case == 0 else lam1)
+        _ssn_impulses(n_rows, rows, bias, sw.st, sw.ie, sw, lam0 if case == 0 else lam1)
         if case == 0:
             for i in range(3 * nbod):
                 sw.g[i] = sw.v[i]

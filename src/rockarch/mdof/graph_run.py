@@ -92,6 +92,7 @@ def _point_impacts(m, ws, was_closed):
 def _sliding(m, ws, vx, vy, om, tol_u, free_t):
     """Number of joints with finite μ that carry a normal impulse and slide (|U_t| > tol_u);
     ``free_t``: those joints and the joints without a normal impulse."""
+    ja, jb = ws.rows.ja, ws.rows.jb
     n_sl = 0
     for k in range(m.n0.shape[0]):
         free_t[k] = ws.lam[3 * k] + ws.lam[3 * k + 1] <= 0.0
@@ -102,9 +103,9 @@ def _sliding(m, ws, vx, vy, om, tol_u, free_t):
         r = 3 * k + 2
         u = 0.0
         if a >= 0:
-            u += ws.ja[r, 0] * vx[a] + ws.ja[r, 1] * vy[a] + ws.ja[r, 2] * om[a]
+            u += ja[r, 0] * vx[a] + ja[r, 1] * vy[a] + ja[r, 2] * om[a]
         if b >= 0:
-            u += ws.jb[r, 0] * vx[b] + ws.jb[r, 1] * vy[b] + ws.jb[r, 2] * om[b]
+            u += jb[r, 0] * vx[b] + jb[r, 1] * vy[b] + jb[r, 2] * om[b]
         if abs(u) > tol_u:
             n_sl += 1
             free_t[k] = True
@@ -305,9 +306,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 or _vmax(vx, vy, om, rad) > v_rest:
             continue
         # at rest: skip the steps whose mean ground acceleration keeps it at rest (Eq. 9.11)
-        lo, hi = rest_interval(nbod, 3 * nj + 2 * ws.cnt[0], ws.rba, ws.rbb, ws.ja, ws.jb,
-                               ws.bias, ws.tn0, ws.tn1, ws.tmu, eps_n, eps, ws.sw, tol_u,
-                               tol_l, ws.lref[0], h, g, v_rest, lam0, lam1)
+        lo, hi = rest_interval(nbod, 3 * nj + 2 * ws.cnt[0], ws.rows, ws.bias, eps_n, eps, ws.sw,
+                               tol_u, tol_l, ws.lref[0], h, g, v_rest, lam0, lam1)
         a_last = math.nan
         if lo <= hi:
             rest_wait = 1

@@ -19,13 +19,13 @@ records in :mod:`rockarch.mdof.graph_run`.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 import numba as nb
 import numpy as np
 
+from rockarch.core.jit_struct import JitStruct, jit_struct
 from rockarch.mdof.collision import detect, local_normals, world
-from rockarch.mdof.contact_solver import SolverWork, make_solver_work, row_dot, solve
+from rockarch.mdof.contact_solver import Rows, SolverWork, make_solver_work, row_dot, solve
 from rockarch.mdof.kernel_data import SLIDE_TOL
 from rockarch.mdof.kinematics import normal_bias, strikes
 
@@ -351,6 +351,7 @@ def point_rows(m, ws, x, y, cs, sn, i):
     face's normal attached to its body a (the ground's: +y), the corner on body b; arms
     from both centroids to the corner (the exact gradient of the gap, docs/theory.md
     Eq. (9.10))."""
+    rba, rbb, ja, jb = ws.rows.rba, ws.rows.rbb, ws.rows.ja, ws.rows.jb
     nv = m.pv.shape[0]
     v = ws.cvert[i]
     e = ws.cedge[i]
@@ -373,21 +374,21 @@ def point_rows(m, ws, x, y, cs, sn, i):
         ny = -ex / ln
         gap = nx * (pbx - p0x) + ny * (pby - p0y)
     r = 3 * m.n0.shape[0] + 2 * i
-    ws.rba[r] = a
-    ws.rbb[r] = b
-    ws.rba[r + 1] = a
-    ws.rbb[r + 1] = b
+    rba[r] = a
+    rbb[r] = b
+    rba[r + 1] = a
+    rbb[r + 1] = b
     for c in range(3):
-        ws.ja[r, c] = 0.0
-        ws.jb[r, c] = 0.0
-        ws.ja[r + 1, c] = 0.0
-        ws.jb[r + 1, c] = 0.0
-    _rows(ws.ja, ws.jb, r, a, nx, ny, pbx, pby, obx, oby, x, y)
-    _rows(ws.ja, ws.jb, r + 1, a, -ny, nx, pbx, pby, obx, oby, x, y)
+        ja[r, c] = 0.0
+        jb[r, c] = 0.0
+        ja[r + 1, c] = 0.0
+        jb[r + 1, c] = 0.0
+    _rows(ja, jb, r, a, nx, ny, pbx, pby, obx, oby, x, y)
+    _rows(ja, jb, r + 1, a, -ny, nx, pbx, pby, obx, oby, x, y)
     if b < 0:
         for c in range(3):
-            ws.jb[r, c] = 0.0
-            ws.jb[r + 1, c] = 0.0
+            jb[r, c] = 0.0
+            jb[r + 1, c] = 0.0
     ws.cgap[i] = gap
 
 
@@ -486,10 +487,11 @@ def contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws):
     """The rows of the step's contact problem: geometry at (x, y, ph) (the joints and the
     point contacts within ``margin``), the free velocities (vx, vy, om) in ws.sw.vf and the
     rows' biases (docs/theory.md Eq. (6.3a)) in ws.bias. Returns the number of rows."""
+    rba, rbb, ja, jb = ws.rows.rba, ws.rows.rbb, ws.rows.ja, ws.rows.jb
     nj = m.n0.shape[0]
     nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
-             ws.ja, ws.jb)
+             ja, jb)
     handed = hand_over(m, ph, ws.gap, ws.jon)
     if handed and margin < 0.0:
         margin = gtol  # a joint just handed its blocks over: search now
@@ -509,12 +511,12 @@ def contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws):
             bias[r] = 0.0
             strike[r] = False
             if c < 2:
-                u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, vf)
+                u = row_dot(r, rba, rbb, ja, jb, vf)
                 bias[r] = normal_bias(ws.gap[k, c], u, gtol, hh, v_app)
                 strike[r] = strikes(u, bias[r], v_app)
     for i in range(ws.cnt[0]):
         r = 3 * nj + 2 * i
-        u = row_dot(r, ws.rba, ws.rbb, ws.ja, ws.jb, sw.vf)
+        u = row_dot(r, rba, rbb, ja, jb, sw.vf)
         ws.bias[r] = normal_bias(ws.cgap[i], u, gtol, hh, v_app)
         ws.strike[r] = strikes(u, ws.bias[r], v_app)
         ws.bias[r + 1] = 0.0
@@ -531,8 +533,7 @@ def contact_step(m, x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, 
     nbod = m.mass.shape[0]
     nrows = contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws)
     sw = ws.sw
-    its = solve(nbod, nrows, ws.rba, ws.rbb, ws.ja, ws.jb, ws.bias, ws.lam, ws.tn0, ws.tn1,
-                ws.tmu, eps_n, eps_t, sw, tol_u, tol_l, ws.lref[0])
+    its = solve(nbod, nrows, ws.rows, ws.bias, ws.lam, eps_n, eps_t, sw, tol_u, tol_l, ws.lref[0])
     for j in range(nbod):
         vx[j] = sw.v[3 * j]
         vy[j] = sw.v[3 * j + 1]
@@ -549,11 +550,12 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws, cws):
     last slid or was open) for a sticking joint; the current offset for a joint in
     ``free_t`` (sliding or open), whose anchor it becomes. ``cws``: the step's workspace,
     whose point contacts (and their impulses) are projected here at this configuration."""
+    rba, rbb, ja, jb = ws.rows.rba, ws.rows.rbb, ws.rows.ja, ws.rows.jb
     nj = m.n0.shape[0]
     nbod = m.mass.shape[0]
     geometry(nj, m.ba, m.bb, x, y, ph, ws.ra, ws.rb, ws.fa, ws.fb, ws.ftol, m.n0, m.mu, ws.gap,
-             ws.ja, ws.jb)
-    joint_blocks(nj, m.ba, m.bb, ws.ja, ws.jb, ws.im, ws.ii, eps, ws.wl)
+             ja, jb)
+    joint_blocks(nj, m.ba, m.bb, ja, jb, ws.im, ws.ii, eps, ws.wl)
     for k in range(nj):
         if free_t[k]:
             anchor[k] = ws.gap[k, 2]
@@ -580,9 +582,9 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws, cws):
                     elif abs(s) > slip_tol:
                         s = 0.0
                 if a >= 0:
-                    s += ws.ja[r, 0] * dx[a] + ws.ja[r, 1] * dy[a] + ws.ja[r, 2] * dp[a]
+                    s += ja[r, 0] * dx[a] + ja[r, 1] * dy[a] + ja[r, 2] * dp[a]
                 if b >= 0:
-                    s += ws.jb[r, 0] * dx[b] + ws.jb[r, 1] * dy[b] + ws.jb[r, 2] * dp[b]
+                    s += jb[r, 0] * dx[b] + jb[r, 1] * dy[b] + jb[r, 2] * dp[b]
                 u[i] = s
             for i in range(3):
                 for j in range(3):
@@ -590,7 +592,7 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws, cws):
                     a3[i, j] = ws.wl[k, i, j] if kept else (1.0 if i == j else 0.0)
                 r3[i] = -u[i] if keep[3 * k + i] else 0.0
             if solve3(a3, r3, d):
-                apply_impulse(k, m.ba, m.bb, ws.ja, ws.jb, d, ws.im, ws.ii, dx, dy, dp)
+                apply_impulse(k, m.ba, m.bb, ja, jb, d, ws.im, ws.ii, dx, dy, dp)
     # point contacts that carried an impulse: their normal rows, one by one
     cs = np.cos(ph)
     sn = np.sin(ph)
@@ -603,34 +605,36 @@ def project(m, x, y, ph, eps, keep, slip_tol, free_t, anchor, ws, cws):
         point_rows(m, ws, x, y, cs, sn, i)
         if ws.cgap[i] > 0.0:
             continue
-        a = ws.rba[r]
-        b = ws.rbb[r]
+        a = rba[r]
+        b = rbb[r]
         s = ws.cgap[i]
         w = eps
         if a >= 0:
-            s += ws.ja[r, 0] * dx[a] + ws.ja[r, 1] * dy[a] + ws.ja[r, 2] * dp[a]
-            w += (ws.ja[r, 0] ** 2 + ws.ja[r, 1] ** 2) * ws.im[a] + ws.ja[r, 2] ** 2 * ws.ii[a]
+            s += ja[r, 0] * dx[a] + ja[r, 1] * dy[a] + ja[r, 2] * dp[a]
+            w += (ja[r, 0] ** 2 + ja[r, 1] ** 2) * ws.im[a] + ja[r, 2] ** 2 * ws.ii[a]
         if b >= 0:
-            s += ws.jb[r, 0] * dx[b] + ws.jb[r, 1] * dy[b] + ws.jb[r, 2] * dp[b]
-            w += (ws.jb[r, 0] ** 2 + ws.jb[r, 1] ** 2) * ws.im[b] + ws.jb[r, 2] ** 2 * ws.ii[b]
+            s += jb[r, 0] * dx[b] + jb[r, 1] * dy[b] + jb[r, 2] * dp[b]
+            w += (jb[r, 0] ** 2 + jb[r, 1] ** 2) * ws.im[b] + jb[r, 2] ** 2 * ws.ii[b]
         mu_ = -s / w
         if a >= 0:
-            dx[a] += ws.ja[r, 0] * mu_ * ws.im[a]
-            dy[a] += ws.ja[r, 1] * mu_ * ws.im[a]
-            dp[a] += ws.ja[r, 2] * mu_ * ws.ii[a]
+            dx[a] += ja[r, 0] * mu_ * ws.im[a]
+            dy[a] += ja[r, 1] * mu_ * ws.im[a]
+            dp[a] += ja[r, 2] * mu_ * ws.ii[a]
         if b >= 0:
-            dx[b] += ws.jb[r, 0] * mu_ * ws.im[b]
-            dy[b] += ws.jb[r, 1] * mu_ * ws.im[b]
-            dp[b] += ws.jb[r, 2] * mu_ * ws.ii[b]
+            dx[b] += jb[r, 0] * mu_ * ws.im[b]
+            dy[b] += jb[r, 1] * mu_ * ws.im[b]
+            dp[b] += jb[r, 2] * mu_ * ws.ii[b]
     for j in range(nbod):
         x[j] += dx[j]
         y[j] += dy[j]
         ph[j] += dp[j]
 
 
-class Work(NamedTuple):
+@jit_struct
+class Work(JitStruct):
     """Scaled geometry and work arrays of one run: the joints' rows first (3 per joint:
-    corner 0, corner 1, tangential), then up to ``cap`` point contacts (2 rows each)."""
+    corner 0, corner 1, tangential), then up to ``cap`` point contacts (2 rows each);
+    passed by reference (:mod:`rockarch.core.jit_struct`)."""
 
     ra: np.ndarray
     rb: np.ndarray
@@ -640,17 +644,11 @@ class Work(NamedTuple):
     im: np.ndarray
     ii: np.ndarray
     gap: np.ndarray  # (nj, 3)
-    ja: np.ndarray  # (R, 3)
-    jb: np.ndarray
+    rows: Rows  # the rows' bodies and Jacobian (R rows), and their friction law
     wl: np.ndarray  # (nj, 3, 3) the joints' diagonal blocks of W (projection)
     bias: np.ndarray  # (R,)
     strike: np.ndarray  # (R,) normal rows of corners striking this step (Eq. 6.3a)
     lam: np.ndarray
-    rba: np.ndarray  # (R,) bodies of every row
-    rbb: np.ndarray
-    tn0: np.ndarray  # (R,) normal rows that bound a tangential row (-1: a normal row)
-    tn1: np.ndarray
-    tmu: np.ndarray
     pv: np.ndarray  # (nv, 2) the polygons' vertices, scaled
     wx: np.ndarray  # (nv,) their world positions
     wy: np.ndarray
@@ -704,9 +702,10 @@ def make_work(m, scale, cap):
         pv[v, 1] *= scale
     return Work(m.ra * scale, m.rb * scale, m.fa * scale, m.fb * scale, m.ftol * scale,
                 1.0 / m.mass, 1.0 / inertia,
-                np.zeros((nj, 3)), np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((nj, 3, 3)),
-                np.zeros(n), np.zeros(n, dtype=np.bool_), np.zeros(n), rba, rbb, tn0, tn1,
-                tmu, pv, np.zeros(nv), np.zeros(nv), local_normals(m.pptr, pv),
+                np.zeros((nj, 3)),
+                Rows(rba, rbb, np.zeros((n, 3)), np.zeros((n, 3)), tn0, tn1, tmu),
+                np.zeros((nj, 3, 3)), np.zeros(n), np.zeros(n, dtype=np.bool_), np.zeros(n), pv,
+                np.zeros(nv), np.zeros(nv), local_normals(m.pptr, pv),
                 np.zeros((nv, 2)), np.zeros((npoly, 4)),
                 np.arange(npoly), np.zeros((cap, 2), dtype=np.int64),
                 np.zeros(2, dtype=np.int64), np.ones(nj, dtype=np.bool_),

@@ -9,11 +9,13 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import numba as nb
 import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.spatial import ConvexHull
 
+from rockarch.core.jit_struct import JitStruct, jit_struct
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.collision import thin_outline
 
@@ -53,8 +55,10 @@ def chain_model(assembly: Assembly) -> ChainModel:
                       float(assembly.delta_ref), float(assembly.g))
 
 
-class GraphModel(NamedTuple):
-    """Any assembly for :mod:`rockarch.mdof.graph_run` (unit scale)."""
+@jit_struct
+class GraphModel(JitStruct):
+    """Any assembly for :mod:`rockarch.mdof.graph_run` (unit scale), passed by reference
+    (:mod:`rockarch.core.jit_struct`)."""
 
     mass: np.ndarray  # (nb,)
     inertia: np.ndarray  # (nb,)
@@ -240,14 +244,22 @@ def graph_model(assembly: Assembly) -> GraphModel:
     bpos, kbody = body_order(assembly)
     pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y = _outlines(assembly)
     mu = np.asarray(assembly.mu, dtype=float)
-    return GraphModel(_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb,
-                      rel(ba, corners), rel(bb, corners), normal, _f(mu), rel(ba, fa),
-                      rel(bb, fb), _f(SLIDE_TOL * span),
-                      np.ascontiguousarray(ptr, dtype=np.int64),
-                      np.array([i[1] for i in inc], dtype=np.int64),
-                      np.array([i[2] for i in inc], dtype=np.int64),
-                      bpos, kbody, min(3 * assembly.n_blocks - 1, max(2 * kbody, kbody + 30)),
-                      pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y,
-                      float(mu.min()), 2 * pv.shape[0] + 16,
-                      float(assembly.thickness.min()), float(assembly.delta_ref),
-                      float(assembly.g))
+    return _new_graph_model((_f(assembly.mass), _f(assembly.inertia), _f(cen), ba, bb,
+                             rel(ba, corners), rel(bb, corners), normal, _f(mu), rel(ba, fa),
+                             rel(bb, fb), _f(SLIDE_TOL * span),
+                             np.ascontiguousarray(ptr, dtype=np.int64),
+                             np.array([i[1] for i in inc], dtype=np.int64),
+                             np.array([i[2] for i in inc], dtype=np.int64),
+                             bpos, kbody,
+                             min(3 * assembly.n_blocks - 1, max(2 * kbody, kbody + 30)),
+                             pv, pptr, pbody, vpoly, pkeys, pptr_j, pjoint, ground_y,
+                             float(mu.min()), 2 * pv.shape[0] + 16,
+                             float(assembly.thickness.min()), float(assembly.delta_ref),
+                             float(assembly.g)))
+
+
+@nb.njit(cache=True)
+def _new_graph_model(fields):
+    """A :class:`GraphModel` of its fields (built here: from Python, numba would compile
+    its constructor anew in every process)."""
+    return GraphModel(*fields)
