@@ -7,8 +7,10 @@ code. The plain reference is the group's total: the four parts sum to it. Not pa
 test suite (docs/performance.md, "Compile time").
 
 ``tuples`` instead measures what a named tuple of arrays passed by value costs (the way the
-stepper's kernel data travel): a chain of 5 small kernels, each calling the next, compiled
-with a tuple of 40 arrays, of 8 arrays, and with the 3 arrays each kernel reads.
+stepper's kernel data travelled until 2026-11-29): a chain of 5 small kernels, each calling
+the next, compiled with a tuple of 40 arrays, of 8 arrays, with a record of 40 arrays passed
+by reference (:mod:`rockarch.core.jit_struct`, as they travel now), and with the 3 arrays
+each kernel reads.
 
 Run:  .venv/bin/python benchmarks/compile_time.py [graph|rest]    (~1.5 min for graph)
       .venv/bin/python benchmarks/compile_time.py tuples          (~10 s)
@@ -68,9 +70,12 @@ import numba as nb
 
 n, mode, depth = int(sys.argv[1]), sys.argv[2], 5
 W = NamedTuple("W", [(f"a{i}", np.ndarray) for i in range(n)])
+if mode == "struct":  # the same fields in a record passed by reference
+    from rockarch.core.jit_struct import JitStruct, jit_struct
+    W = jit_struct(type("W", (JitStruct,), {"__annotations__": dict.fromkeys(W._fields)}))
 src = []
 for d in range(depth):
-    if mode == "tuple":  # each kernel reads 3 fields of the tuple and passes it on
+    if mode != "arrays":  # each kernel reads 3 fields of the record and passes it on
         nxt = f"f{d + 1}(w, k)" if d < depth - 1 else "0.0"
         body = f"w.a{d}[i] * w.a{d + 1}[i] + w.a{d + 2}[i]"
         args = "w, k"
@@ -81,21 +86,30 @@ for d in range(depth):
                f"        s += {body}\\n    return s + {nxt}\\n")
 ns = {"nb": nb}
 exec("\\n".join(src), ns)
-w = W(*[np.ones(10) for _ in range(n)])
+arrays = [np.ones(10) for _ in range(n)]
+if mode == "struct":  # built in a kernel (outside the timing: its constructor compiles)
+    make = nb.njit(lambda *a: W(*a))
+    w = make(*arrays)
+else:
+    w = W(*arrays)
 t = time.perf_counter()
-ns["f0"](w, 10) if mode == "tuple" else ns["f0"](w.a0, w.a1, w.a2, 10)
+ns["f0"](w, 10) if mode != "arrays" else ns["f0"](w.a0, w.a1, w.a2, 10)
 print(time.perf_counter() - t)
 """
 
 
 def tuples() -> None:
-    """Compile time of a chain of 5 kernels: a named tuple of n arrays vs 3 arrays."""
+    """Compile time of a chain of 5 kernels: a named tuple of n arrays, the same fields in a
+    record passed by reference (:mod:`rockarch.core.jit_struct`), or the 3 arrays each
+    kernel reads."""
     print("a chain of 5 kernels, each calling the next (fresh process each, no cache):")
-    for n, mode in ((40, "tuple"), (8, "tuple"), (40, "arrays")):
+    for n, mode in ((40, "tuple"), (8, "tuple"), (40, "struct"), (40, "arrays")):
         out = subprocess.run([sys.executable, "-c", TUPLES, str(n), mode], check=True,
                              capture_output=True, text=True)
-        what = f"a named tuple of {n} arrays" if mode == "tuple" else "the 3 arrays it reads"
-        print(f"  each passed {what:32s} {float(out.stdout):5.2f} s")
+        what = {"tuple": f"a named tuple of {n} arrays",
+                "struct": f"a record of {n} arrays (by reference)",
+                "arrays": "the 3 arrays it reads"}[mode]
+        print(f"  each passed {what:40s} {float(out.stdout):5.2f} s")
 
 
 def main(group: str = "graph") -> None:
