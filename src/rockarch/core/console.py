@@ -1,4 +1,5 @@
-"""What the command line shows on stderr besides its results: warnings as one line each.
+"""What the command line shows on stderr besides its results: warnings as one line each,
+and progress bars that show on any terminal.
 
 Theory: none (presentation only).
 
@@ -10,8 +11,12 @@ sweep's worker processes when they start; a library user keeps Python's own form
 
 from __future__ import annotations
 
+import os
 import sys
 import warnings
+
+#: Height given to progress bars on a terminal that reports none (see :func:`bar_rows`).
+DEFAULT_ROWS = 24
 
 
 def format_warning(message) -> str:
@@ -44,3 +49,15 @@ def on_terminal(progress: bool | None) -> bool:
         return sys.stderr is not None and sys.stderr.isatty()
     except (AttributeError, ValueError):  # a replaced or closed stderr
         return False
+
+
+def bar_rows() -> int | None:
+    """The screen height to give a progress bar (tqdm's ``nrows``): None (tqdm asks the
+    terminal) unless stderr is a terminal that reports 0 rows (a pseudo-terminal with no size
+    set, as under ``script`` or some CI runners), where tqdm would hide every bar; then
+    :data:`DEFAULT_ROWS`."""
+    try:
+        rows = os.get_terminal_size(sys.stderr.fileno()).lines
+    except (AttributeError, OSError, ValueError):  # not a terminal, or no stderr
+        return None
+    return DEFAULT_ROWS if rows <= 0 else None

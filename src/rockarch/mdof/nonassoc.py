@@ -27,6 +27,7 @@ import numpy as np
 from scipy.sparse import csr_matrix, hstack, identity, vstack
 from tqdm import tqdm
 
+from rockarch.core.console import bar_rows
 from rockarch.mdof.highs import Model
 
 #: Relaxation factor of the normal forces that set the shear capacities (Eq. 10.7); the
@@ -136,7 +137,7 @@ def iterate(a_eq, b_eq, mu, start: Iterate, weight: float, sliding_of,
     lam_prev, best, hist = start.lambda_, start, []
     show = desc is not None and (sys.stderr.isatty() if progress is None else progress)
     with tqdm(total=MAX_ITER, desc=desc, unit="LP", disable=not show, file=sys.stderr,
-              leave=False, position=position) as bar:
+              leave=False, position=position, nrows=bar_rows()) as bar:
         for k in range(MAX_ITER):
             bar.update(1)
             cap = shear_caps(mu, nt, weight)

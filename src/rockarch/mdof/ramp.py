@@ -25,8 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rockarch.core.constants import GAP_TOL
+from rockarch.core.constants import MDOF_H_FACTOR as H_FACTOR
 from rockarch.mdof.assembly import Assembly
-from rockarch.mdof.simulate import simulate
+from rockarch.mdof.simulate import _simulate
 from rockarch.mdof.statics import collapse
 from rockarch.motion.signals import GroundMotion
 
@@ -72,7 +74,9 @@ def _first_motion(assembly: Assembly, a0: float, end: float, rate: float, thr: f
     dur = (end - a0) / rate
     t = np.linspace(0.0, dur, max(int(math.ceil(dur / DT)), 2) + 1)
     acc = sign * (a0 + (end - a0) * t / dur)
-    r = simulate(assembly, GroundMotion(t, acc, f"ramp to {end:.4g} m/s²"), t_free=0.0)
+    label = f"slow ramp {'+' if sign > 0 else '−'}x to {end / assembly.g:.3g} g"
+    r = _simulate(assembly, GroundMotion(t, acc, f"ramp to {end:.4g} m/s²"), None, 0.0,
+                  H_FACTOR, GAP_TOL, 1, False, True, None, label)
     q = r.q
     d = np.hypot(q[:, :, 0] - q[0, :, 0], q[:, :, 1] - q[0, :, 1]).max(axis=1)
     moved = np.flatnonzero(d > thr)

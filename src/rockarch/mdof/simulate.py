@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from rockarch.core import limits
-from rockarch.core.console import on_terminal
+from rockarch.core.console import bar_rows, on_terminal
 from rockarch.core.constants import GAP_TOL, T_FREE
 from rockarch.core.constants import MDOF_H_FACTOR as H_FACTOR
 from rockarch.core.jit_cache import announce_compile, kernel_array
@@ -279,8 +279,9 @@ def _with_progress(run, out_t: np.ndarray, t_end: float, label: str, progress: b
         timed = out_t.size > 10  # a history of a few samples (the step check): time alone
         fmt = ("{desc}: {percentage:3.0f}%|{bar}| t = {n:.2f} of {total:.2f} s "
                "[{elapsed}<{remaining}]" if timed else "{desc}: {elapsed}")
+        rows = bar_rows()  # the terminal's size on every refresh, unless it reports none
         with tqdm(total=round(t_end, 2) if timed else None, desc=label, file=sys.stderr,
-                  leave=False, dynamic_ncols=True, bar_format=fmt) as bar:
+                  leave=False, dynamic_ncols=rows is None, bar_format=fmt, nrows=rows) as bar:
             while th.is_alive():
                 th.join(0.5)
                 if timed:

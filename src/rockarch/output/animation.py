@@ -28,6 +28,7 @@ from matplotlib.patches import Polygon
 from PIL import Image
 from tqdm import tqdm
 
+from rockarch.core.console import bar_rows
 from rockarch.core.paths import atomic_write
 from rockarch.core.validate import in_range, integer
 from rockarch.output.collapse_plots import draw_supports
@@ -296,7 +297,7 @@ def animate(resp: MDOFResponse, path: str | Path, *, fps: int = 20, max_frames: 
 
     def frames():
         with tqdm(total=n, desc="frames", unit="frame", disable=not show,
-                  file=sys.stderr, leave=False) as bar:
+                  file=sys.stderr, leave=False, nrows=bar_rows()) as bar:
             for k, i in enumerate(plan.indices):
                 final = k == n - 1
                 rgb = renderer.frame(int(i), plan.final_magnify if final else plan.magnify,

@@ -32,6 +32,7 @@ import numpy as np
 from tqdm.auto import tqdm
 
 from rockarch.core import sweep
+from rockarch.core.console import bar_rows
 from rockarch.core.constants import OAS_TOL, G
 from rockarch.core.validate import in_range, show, tolerance
 from rockarch.motion.intensity import im_value
@@ -244,7 +245,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     collapse = np.full(len(motions), np.nan)
     try:
         with tqdm(total=len(motions), desc=scan.name, unit="record",
-                  disable=not progress, leave=False) as bar:
+                  disable=not progress, leave=False, nrows=bar_rows()) as bar:
             res = sweep.run_chunks(scan, motions, tasks, executor=executor, store=store,
                                    bar=TaskBar(bar, log, scan.name, len(motions)), keys=keys)
     finally:

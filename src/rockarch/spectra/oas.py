@@ -17,7 +17,7 @@ import numpy as np
 from tqdm.auto import tqdm
 
 from rockarch.core import __version__, sweep
-from rockarch.core.console import on_terminal
+from rockarch.core.console import bar_rows, on_terminal
 from rockarch.core.constants import OAS_TOL as TOL
 from rockarch.core.paths import atomic_write
 from rockarch.core.validate import tolerance
@@ -112,7 +112,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
 
     try:
         with tqdm(total=n_p * n_r + n_bisect * n_p, desc=f"OAS {system.name}", unit="sim",
-                  disable=not on_terminal(progress), leave=False) as bar:
+                  disable=not on_terminal(progress), leave=False, nrows=bar_rows()) as bar:
             grid = [np.meshgrid(p[idx], ratio, indexing="ij") for idx in rows]
             for idx, (o, m) in zip(rows, run(grid), strict=True):
                 over[idx], resp[idx] = o, m
