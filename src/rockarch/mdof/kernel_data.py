@@ -1,8 +1,9 @@
 """Typed inputs of the MDOF kernels, built from an :class:`~rockarch.mdof.assembly.Assembly`.
 
-The kernels take one small named tuple (numba passes it as a record) instead of a long
-positional argument list: :func:`chain_model` for the banded chain stepper,
-:func:`graph_model` for the general contact-graph stepper with friction.
+The kernels take one record instead of a long positional argument list:
+:func:`chain_model` (a small named tuple, passed by value) for the banded chain stepper,
+:func:`graph_model` (a record passed by reference, :mod:`rockarch.core.jit_struct`) for
+the general contact-graph stepper with friction.
 """
 
 from __future__ import annotations
