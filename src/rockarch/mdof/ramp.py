@@ -75,8 +75,9 @@ def _first_motion(assembly: Assembly, a0: float, end: float, rate: float, thr: f
     t = np.linspace(0.0, dur, max(int(math.ceil(dur / DT)), 2) + 1)
     acc = sign * (a0 + (end - a0) * t / dur)
     label = f"slow ramp {'+' if sign > 0 else '−'}x to {end / assembly.g:.3g} g"
-    r = _simulate(assembly, GroundMotion(t, acc, f"ramp to {end:.4g} m/s²"), None, 0.0,
-                  H_FACTOR, GAP_TOL, 1, False, True, None, label)
+    r = _simulate(assembly, GroundMotion(t, acc, f"ramp to {end:.4g} m/s²"), p=None,
+                  t_free=0.0, h_factor=H_FACTOR, gap_tol=GAP_TOL, record_every=1,
+                  through_collapse=False, skip_rest=True, progress=None, label=label)
     q = r.q
     d = np.hypot(q[:, :, 0] - q[0, :, 0], q[:, :, 1] - q[0, :, 1]).max(axis=1)
     moved = np.flatnonzero(d > thr)

@@ -324,10 +324,10 @@ def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
                                             bool(through_collapse), bool(skip_rest)),
                              out_t, t_end, label, progress)
     st, tc, mx, imp, nopen, n_rec, steps, fails, slip, n_slide, n_points, n_rest = out[:12]
-    c0 = model.c0
-    # prepend the initial state
+    # prepend the initial state (the model's c0: the centroids as floats; read from the
+    # assembly, a record's field read from Python boxes all its fields)
     q0 = np.zeros((1, nb_, 3))
-    q0[0, :, :2] = c0 * scale
+    q0[0, :, :2] = np.asarray(assembly.centroid, dtype=float) * scale
     return MDOFResponse(
         system=assembly.name, assembly=assembly, motion_name=name, scale=scale,
         t=np.concatenate([[0.0], out_t[:n_rec]]), q=np.concatenate([q0, out_q[:n_rec]]),
