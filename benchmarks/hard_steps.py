@@ -7,7 +7,8 @@ steps are run by the Python version of the run loop (``graph_run.run.py_func``) 
 compiled step, so that every step's banded LU factorisations (the solver's counter) and CPU
 time are read. Prints the steps solved, those that needed the proximal continuation
 (docs/theory.md Eq. (9.9)), the factorisations and how they spread over the steps, the
-failed steps, the residual of the contact law at the impulses of the steps that needed the
+steps that the interior-point method (Eq. (9.13)) solved and its iterations, the failed
+steps, the residual of the contact law at the impulses of the steps that needed the
 continuation (``contact_solver.law_residual``: the natural residual of Eqs. (9.1)–(9.3)
 with ε, in velocity, against the continuation's tolerance) and the CPU seconds of the
 solved steps. To compare with an earlier version of the solver, run the same command from
@@ -46,12 +47,15 @@ def main() -> None:
     step = gs.contact_step
     log = []
     residuals = []
+    ipc = []
 
     def counted(*args_):
         ws = args_[-1]
         f0, p0 = ws.sw.state[2], ws.sw.state[7]
+        i0, j0 = ws.sw.state[8], ws.sw.state[9]
         t0 = time.process_time()
         its = step(*args_)
+        ipc.append((ws.sw.state[8] - i0, ws.sw.state[9] - j0))
         log.append((its, ws.sw.state[2] - f0, ws.sw.state[7] - p0, time.process_time() - t0))
         if ws.sw.state[7] > p0:  # the law's residual where the continuation ran
             nr = 3 * m.n0.shape[0] + 2 * ws.cnt[0]
@@ -82,6 +86,9 @@ def main() -> None:
           f"{np.sort(nf)[::-1][:max(len(nf) // 10, 1)].sum() / max(nf.sum(), 1):.0%}; "
           f"CPU {arr[:, 3].sum():.1f} s in the solved steps "
           f"({1e3 * arr[:, 3].sum() / max(nf.sum(), 1):.2f} ms per factorisation)")
+    ipa = np.array(ipc)
+    print(f"interior point: {int(ipa[:, 0].sum())} steps solved by it, {int(ipa[:, 1].sum())} "
+          f"of its iterations (each a factorisation)")
     res = np.array(residuals).reshape(-1, 2)
     for label, sel in (("solved", res[:, 0] == 0), ("failed", res[:, 0] == 1)):
         if sel.any():

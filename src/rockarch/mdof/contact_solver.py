@@ -22,8 +22,10 @@ wall is hyperstatic). H is not symmetric where rows slide (non-associative frict
 banded LU per iteration, kept from step to step while the states do not change (refined
 against the moving Jacobian; a band of half-bandwidth ≤ ``REFINE_KD`` is factorised anew).
 Where hundreds of joints open and close at once the plain method need not settle; it is
-then globalised by the proximal point method (Eq. (9.9), :func:`solve`). Every step ends
-with the contact law met within (tol_u, tol_l) or counts as failed.
+then globalised by the proximal point method (Eq. (9.9), :func:`solve`), in the largest
+problems after an interior-point method (Eq. (9.13), :func:`interior_point`) that gets
+there, or near, in a few tens of factorisations. Every step ends with the contact law met
+within (tol_u, tol_l) or counts as failed.
 """
 
 from __future__ import annotations
@@ -70,6 +72,23 @@ PROX_ROWS = 1000
 PROX_DROP = 10.0
 #: ... and rises after one that did not.
 PROX_UP = 3.0
+#: Where the plain method does not settle in a problem of more than ``PROX_ROWS`` rows
+#: without μ = ∞ rows, the interior-point method (:func:`interior_point`) is tried before
+#: the proximal continuation, for at most this many iterations (one factorisation each;
+#: the continuation then starts from its last iterate). On the 205-block wall's violent
+#: steps 20, 30 and 45 gave 56 634, 47 324 and 49 042 factorisations over the first 3 s of
+#: El Centro at 2·ap,min (docs/performance.md) ...
+IP_MAX = 30
+#: ... and given up after this many steps in a row shorter than ``IP_SHORT`` (it stalls).
+IP_STALL = 4
+IP_SHORT = 0.01
+#: Fraction of the step to the boundary of the positive pairs that is taken.
+IP_BOUNDARY = 0.995
+#: Columns of SolverWork.ip: the variables (0 w or s₁, 1 z₁, 2 s₂, 3 z₂), the direction
+#: (4 ΔΛ, 5 Δw or Δs₁, 6 Δz₁, 7 Δs₂, 8 Δz₂), the reduced system's coefficients (9 its
+#: diagonal weight, 10 its right-hand side term, 11 e_t) and the complementarity targets
+#: (12, 13).
+IP_COLS = 14
 
 
 @jit_struct
@@ -101,7 +120,8 @@ class SolverWork(JitStruct):
     mdiag: np.ndarray  # (3nb,) diagonal of M
     state: np.ndarray  # [factors valid (2), half-bandwidth, factorisations, solves,
     #                     refactorisations after refinement, semismooth solves, iterations,
-    #                     steps that needed the proximal continuation]
+    #                     steps that needed the proximal continuation, steps solved by
+    #                     the interior-point method, its iterations]
     st: np.ndarray  # (R,) int8 states: normal 0 closed, −1 open; tangential 0 stick,
     #                  ±1 slide with Λ_t = ±μΣΛ_n, 2 no shear (μ = ∞ without compression)
     rhs: np.ndarray  # (3nb,) right-hand side
@@ -115,6 +135,7 @@ class SolverWork(JitStruct):
     lamk: np.ndarray  # (R,) Λ_k
     act: np.ndarray  # (R,) bool scratch: the rows H holds
     lurow: np.ndarray  # (cap + 1,) the pivot row of the LU
+    ip: np.ndarray  # (R, IP_COLS) the interior-point method's per-row variables and scratch
 
 
 @nb.njit(cache=True)
@@ -128,13 +149,13 @@ def make_solver_work(nbod, n_rows, pos, mass, inertia_scaled, kd_cap):
         mdiag[3 * j + 1] = mass[j]
         mdiag[3 * j + 2] = inertia_scaled[j]
     return SolverWork(pos.copy(), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-                      np.zeros(n_rows), mdiag, np.zeros(8, dtype=np.int64),
+                      np.zeros(n_rows), mdiag, np.zeros(10, dtype=np.int64),
                       np.zeros(n_rows, dtype=np.int8), np.zeros(n), np.zeros(n),
                       np.zeros((n, 2 * min(kd_cap, max(n - 1, 0)) + 1)),
                       np.zeros(n_rows, dtype=np.int8), np.zeros(1), np.zeros(n_rows),
                       np.zeros(n_rows, dtype=np.int8), np.zeros(n_rows), np.zeros(n_rows),
                       np.zeros(n_rows, dtype=np.bool_),
-                      np.zeros(min(kd_cap, max(n - 1, 0)) + 1))
+                      np.zeros(min(kd_cap, max(n - 1, 0)) + 1), np.zeros((n_rows, IP_COLS)))
 
 
 @nb.njit(cache=True, inline="always")
@@ -296,22 +317,30 @@ def _ssn_terms(r, st, tn0, tn1, tmu, mu_r):
 
 
 @nb.njit(cache=True)
+def _band_mass(nbod, sw, kd):
+    """sw.lu ← the full band (half-bandwidth kd, body order sw.pos) of M."""
+    lu = sw.lu
+    pos = sw.pos
+    for i in range(3 * nbod):
+        for d in range(2 * kd + 1):
+            lu[i, d] = 0.0
+    for j in range(nbod):
+        for c in range(3):
+            lu[3 * pos[j] + c, kd] = sw.mdiag[3 * j + c]
+
+
+@nb.njit(cache=True)
 def _ssn_assemble(nbod, n_rows, rows, bias, st, ie, sw, kd):
     """The full band of H = M + ε⁻¹[Σ_closed J_nᵀJ_n + Σ_stick J_tᵀJ_t
     + Σ_slide s·μ·J_tᵀ·Σ_(closed n of its joint) J_n] (docs/theory.md Eq. (9.10)) in sw.lu,
     and its right-hand side M·v_free − ε⁻¹·(the same rows times their biases) in sw.rhs."""
     rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
     tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
-    n = 3 * nbod
     lu = sw.lu
-    for i in range(n):
-        for d in range(2 * kd + 1):
-            lu[i, d] = 0.0
     pos = sw.pos
-    for j in range(nbod):
-        for c in range(3):
-            lu[3 * pos[j] + c, kd] = sw.mdiag[3 * j + c]
-            sw.rhs[3 * j + c] = sw.mdiag[3 * j + c] * sw.vf[3 * j + c]
+    _band_mass(nbod, sw, kd)
+    for i in range(3 * nbod):
+        sw.rhs[i] = sw.mdiag[i] * sw.vf[i]
     for r in range(n_rows):
         if tn0[r] < 0:
             if st[r] == 0:
@@ -634,6 +663,16 @@ def semismooth(nbod, n_rows, rows, bias, lam, sw, tol_u, tol_l, lref, max_it, ke
 
 
 @nb.njit(cache=True)
+def _any_inf(n_rows, rows):
+    """Whether a tangential row has μ = ∞."""
+    tn0, tmu = rows.tn0, rows.tmu
+    for r in range(n_rows):
+        if tn0[r] >= 0 and math.isinf(tmu[r]):
+            return True
+    return False
+
+
+@nb.njit(cache=True)
 def _weights(n_rows, tn0, eps_n, eps_t, rho, ie):
     """1/(ε + ρ) of every row (ε_n for normal rows, ε_t for tangential ones)."""
     for r in range(n_rows):
@@ -655,7 +694,11 @@ def solve(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol_u, tol_l, lref):
     ``PROX_TOL``·tol_u in a problem of more than ``PROX_ROWS`` rows): the proximal term, the
     residual of the original contact law in the rows' velocities, is then below that
     tolerance and Λ solves the original problem to it.
-    Returns the semismooth iterations (negative: failed)."""
+    In a problem of more than ``PROX_ROWS`` rows without μ = ∞ rows, the interior-point
+    method (:func:`interior_point`, docs/theory.md Eq. (9.13)) comes first, for at most
+    ``IP_MAX`` iterations; where it does not get there, the continuation starts from its
+    last iterate.
+    Returns the iterations, semismooth and interior-point (negative: failed)."""
     rba, rbb, ja, jb, tn0 = rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0
     if sw.state[1] <= REFINE_KD:
         sw.state[0] = 0  # a narrow band: refactorised at the step's Jacobian (REFINE_KD)
@@ -672,6 +715,17 @@ def solve(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol_u, tol_l, lref):
         return its
     total = SSN_FIRST
     sw.state[7] += 1
+    if n_rows > PROX_ROWS and not _any_inf(n_rows, rows):
+        ip_its = interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw,
+                                PROX_TOL * tol_u, lamk)
+        if ip_its > 0:
+            sw.state[8] += 1
+            return total + ip_its
+        if ip_its < 0:  # the continuation starts from the method's last iterate
+            total -= ip_its
+            for r in range(n_rows):
+                lamk[r] = lam[r]
+                sst2[r] = st[r]
     rho = 0.0
     for r in range(n_rows):
         rho = max(rho, _wrr(r, rba, rbb, ja, jb, sw))
@@ -714,6 +768,289 @@ def solve(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol_u, tol_l, lref):
     for i in range(3 * nbod):
         sw.v[i] = sw.vf[i] + sw.g[i] / sw.mdiag[i]
     return -1 - total
+
+
+@nb.njit(cache=True, inline="always")
+def _ip_pair(lam, r, tn0, tn1):
+    """Σ of the normal impulses bounding tangential row r (its joint's corners)."""
+    q1 = tn1[r]
+    v1 = lam[max(q1, 0)]
+    s = lam[tn0[r]]
+    if q1 >= 0:
+        s += v1
+    return s
+
+
+@nb.njit(cache=True, inline="always")
+def _ip_cone(x, r, lam, tn0, tn1, tmu):
+    """Tangential row r's distances to its cone's edges s₁, s₂, the ratios z₁/s₁, z₂/s₂ and
+    the residuals s₁ − β − Λ_t, s₂ − β + Λ_t (β = μ·ΣΛ_n)."""
+    s1 = x[r, 0]
+    s2 = x[r, 2]
+    beta = tmu[r] * _ip_pair(lam, r, tn0, tn1)
+    return s1, s2, x[r, 1] / s1, x[r, 3] / s2, s1 - beta - lam[r], s2 - beta + lam[r]
+
+
+@nb.njit(cache=True)
+def _ip_velocities(nbod, n_rows, rows, lam, sw, out):
+    """out = v_free + M⁻¹·Jᵀ·Λ (sw.g: scratch)."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    for i in range(3 * nbod):
+        sw.g[i] = 0.0
+    for r in range(n_rows):
+        row_add(r, rba, rbb, ja, jb, lam[r], sw.g)
+    for i in range(3 * nbod):
+        out[i] = sw.vf[i] + sw.g[i] / sw.mdiag[i]
+
+
+@nb.njit(cache=True)
+def _ip_residuals(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw):
+    """u = J·v + b in sw.u, the momentum residual M·(v − v_f) − Jᵀ·Λ in sw.g, the rows'
+    residuals in sw.ip[:, 10] (normal: R_w = w − u − ε_nΛ; tangential: R_t = u + ε_tΛ_t −
+    z₁ + z₂). Returns the mean complementarity product."""
+    rba, rbb, ja, jb, tn0 = rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0
+    x = sw.ip
+    for i in range(3 * nbod):
+        sw.g[i] = sw.mdiag[i] * (sw.v[i] - sw.vf[i])
+    gap = 0.0
+    for r in range(n_rows):
+        row_add(r, rba, rbb, ja, jb, -lam[r], sw.g)
+        u = row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r]
+        sw.u[r] = u
+        if tn0[r] < 0:
+            x[r, 10] = x[r, 0] - u - eps_n * lam[r]
+            gap += lam[r] * x[r, 0]
+        else:
+            x[r, 10] = u + eps_t * lam[r] - x[r, 1] + x[r, 3]
+            gap += x[r, 0] * x[r, 1] + x[r, 2] * x[r, 3]
+    return gap / n_rows
+
+
+@nb.njit(cache=True)
+def _ip_direction(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd):
+    """The Newton direction of the perturbed law for the complementarity targets in sw.ip[:,
+    12:14] (docs/theory.md Eq. (9.13)), on the factors of H in sw.lu: into sw.ip[:, 4:9]
+    (ΔΛ, Δw or Δs₁, Δz₁, Δs₂, Δz₂) and sw.d (Δv)."""
+    rba, rbb, ja, jb, tn0, tn1, tmu = (rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0,
+                                       rows.tn1, rows.tmu)
+    x = sw.ip
+    n = 3 * nbod
+    for i in range(n):
+        sw.rhs[i] = -sw.g[i]
+    for r in range(n_rows):  # normal rows: ΔΛ = g − d·J·Δv, g in column 4 for now
+        if tn0[r] < 0:
+            den = x[r, 0] + eps_n * lam[r]
+            x[r, 4] = (x[r, 12] + lam[r] * x[r, 10]) / den
+            row_add(r, rba, rbb, ja, jb, x[r, 4], sw.rhs)
+    for r in range(n_rows):  # tangential rows: ΔΛ_t = f − q·(J_t·Δv + (a₁ − a₂)·μ·ΣΔΛ_n)
+        if tn0[r] >= 0:
+            s1, s2, a1, a2, rs1, rs2 = _ip_cone(x, r, lam, tn0, tn1, tmu)
+            e = -x[r, 10] + x[r, 12] / s1 - x[r, 13] / s2 + a1 * rs1 - a2 * rs2
+            x[r, 11] = e
+            f = (e - (a1 - a2) * tmu[r] * _ip_pair(x[:, 4], r, tn0, tn1)) / (eps_t + a1 + a2)
+            row_add(r, rba, rbb, ja, jb, f, sw.rhs)
+    pos = sw.pos
+    for j in range(nbod):
+        for c in range(3):
+            sw.x[3 * pos[j] + c] = sw.rhs[3 * j + c]
+    band_lu_solve(n, sw.lu, kd, sw.x)
+    sw.state[3] += 1
+    for j in range(nbod):
+        for c in range(3):
+            sw.d[3 * j + c] = sw.x[3 * pos[j] + c]
+    for r in range(n_rows):
+        if tn0[r] < 0:
+            jdv = row_dot(r, rba, rbb, ja, jb, sw.d)
+            dl = x[r, 4] - x[r, 9] * jdv
+            x[r, 4] = dl
+            x[r, 5] = jdv + eps_n * dl - x[r, 10]
+    for r in range(n_rows):
+        if tn0[r] >= 0:
+            s1, s2, a1, a2, rs1, rs2 = _ip_cone(x, r, lam, tn0, tn1, tmu)
+            jdv = row_dot(r, rba, rbb, ja, jb, sw.d)
+            dbeta = tmu[r] * _ip_pair(x[:, 4], r, tn0, tn1)
+            dl = (x[r, 11] - jdv - (a1 - a2) * dbeta) / (eps_t + a1 + a2)
+            x[r, 4] = dl
+            ds1 = dbeta + dl - rs1
+            ds2 = dbeta - dl - rs2
+            x[r, 5] = ds1
+            x[r, 6] = (x[r, 12] - x[r, 1] * ds1) / s1
+            x[r, 7] = ds2
+            x[r, 8] = (x[r, 13] - x[r, 3] * ds2) / s2
+
+
+@nb.njit(cache=True, inline="always")
+def _ip_ratio(a, da, alpha):
+    """The largest step ≤ alpha keeping a + step·da ≥ 0."""
+    if da < 0.0:
+        alpha = min(alpha, -a / da)
+    return alpha
+
+
+@nb.njit(cache=True)
+def _ip_step_length(n_rows, tn0, lam, x):
+    """The largest step in [0, 1] along the direction keeping every pair nonnegative."""
+    alpha = 1.0
+    for r in range(n_rows):
+        if tn0[r] < 0:
+            alpha = _ip_ratio(lam[r], x[r, 4], alpha)
+            alpha = _ip_ratio(x[r, 0], x[r, 5], alpha)
+        else:
+            for c in range(4):
+                alpha = _ip_ratio(x[r, c], x[r, 5 + c], alpha)
+    return alpha
+
+
+@nb.njit(cache=True)
+def interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol, lamw):
+    """The step's contact law (docs/theory.md Eqs. (9.1)–(9.3)) by Mehrotra's
+    predictor–corrector interior-point method (Eq. (9.13)): every pair (Λ_n, w = u_n + ε_nΛ_n)
+    and, on a tangential row, (s₁ = β + Λ_t, z₁), (s₂ = β − Λ_t, z₂) with u_t + ε_tΛ_t = z₁ −
+    z₂ is kept positive with products driven to 0; each iteration is one banded LU of
+    H = M + Jᵀ·K·J, whose weights K join the states' 1/ε (a closed or sticking row) and 0
+    (an open one) continuously, and whose couplings are those of (9.7). Started from the
+    step's warm start ``lamw``; stops when the law's natural residual at Λ and v_free +
+    M⁻¹·Jᵀ·Λ (:func:`law_residual`) is within ``tol``: Λ in ``lam``, v⁺ in sw.v and the
+    rows' states from them in sw.st. Returns the iterations; negative: not converged within
+    ``IP_MAX`` or stalled (``IP_STALL`` steps shorter than ``IP_SHORT``), with the last
+    iterate in ``lam``, sw.v and sw.st as above; 0: not tried (H with every row is wider
+    than the band)."""
+    rba, rbb, ja, jb, tn0, tn1, tmu = (rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0,
+                                       rows.tn1, rows.tmu)
+    n = 3 * nbod
+    x = sw.ip
+    act = sw.act
+    for r in range(n_rows):
+        act[r] = True
+    kd = band_needed(n_rows, rba, rbb, act, sw.pos)
+    if 2 * kd + 1 > sw.lu.shape[1]:
+        return 0
+    sw.state[0] = 0  # the LU below is the method's own: no factors kept for the states
+    # the start: the warm start's impulses moved into the interior
+    vs = 1e3 * tol
+    for r in range(n_rows):
+        vs = max(vs, abs(row_dot(r, rba, rbb, ja, jb, sw.vf) + bias[r]))
+    for r in range(n_rows):
+        if tn0[r] < 0:
+            lam[r] = max(lamw[r], 0.0) + vs / _wrr(r, rba, rbb, ja, jb, sw)
+    for r in range(n_rows):
+        if tn0[r] >= 0:
+            beta = tmu[r] * _ip_pair(lam, r, tn0, tn1)
+            lam[r] = min(max(lamw[r], -0.9 * beta), 0.9 * beta)
+            x[r, 0] = beta + lam[r]
+            x[r, 1] = vs
+            x[r, 2] = beta - lam[r]
+            x[r, 3] = vs
+    _ip_velocities(nbod, n_rows, rows, lam, sw, sw.v)
+    for r in range(n_rows):
+        if tn0[r] < 0:
+            x[r, 0] = max(row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r] + eps_n * lam[r], 0.0) + vs
+    short = 0
+    for it in range(IP_MAX):
+        gap = _ip_residuals(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw)
+        # the reduced system's weights and H
+        lu = sw.lu
+        pos = sw.pos
+        _band_mass(nbod, sw, kd)
+        for r in range(n_rows):
+            if tn0[r] < 0:
+                x[r, 9] = lam[r] / (x[r, 0] + eps_n * lam[r])
+                _add_outer(r, r, x[r, 9], rba, rbb, ja, jb, pos, lu, kd)
+        for r in range(n_rows):
+            if tn0[r] >= 0:
+                a1 = x[r, 1] / x[r, 0]
+                a2 = x[r, 3] / x[r, 2]
+                q = 1.0 / (eps_t + a1 + a2)
+                x[r, 9] = q
+                _add_outer(r, r, q, rba, rbb, ja, jb, pos, lu, kd)
+                for c in range(2):
+                    qn = tn0[r] if c == 0 else tn1[r]
+                    if qn >= 0:
+                        _add_outer(r, qn, -q * (a1 - a2) * tmu[r] * x[qn, 9], rba, rbb, ja, jb,
+                                   pos, lu, kd)
+        sw.state[2] += 1
+        sw.state[9] += 1
+        if not band_lu(n, lu, kd, sw.lurow):
+            return _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, it)
+        # predictor: the targets 0
+        for r in range(n_rows):
+            if tn0[r] < 0:
+                x[r, 12] = -lam[r] * x[r, 0]
+            else:
+                x[r, 12] = -x[r, 0] * x[r, 1]
+                x[r, 13] = -x[r, 2] * x[r, 3]
+        _ip_direction(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd)
+        alpha = _ip_step_length(n_rows, tn0, lam, x)
+        aff = 0.0
+        for r in range(n_rows):
+            if tn0[r] < 0:
+                aff += (lam[r] + alpha * x[r, 4]) * (x[r, 0] + alpha * x[r, 5])
+            else:
+                aff += ((x[r, 0] + alpha * x[r, 5]) * (x[r, 1] + alpha * x[r, 6])
+                        + (x[r, 2] + alpha * x[r, 7]) * (x[r, 3] + alpha * x[r, 8]))
+        sigma = (aff / n_rows / gap) ** 3
+        # corrector: the centred targets with the predictor's second-order terms
+        for r in range(n_rows):
+            if tn0[r] < 0:
+                x[r, 12] = sigma * gap - lam[r] * x[r, 0] - x[r, 4] * x[r, 5]
+            else:
+                x[r, 12] = sigma * gap - x[r, 0] * x[r, 1] - x[r, 5] * x[r, 6]
+                x[r, 13] = sigma * gap - x[r, 2] * x[r, 3] - x[r, 7] * x[r, 8]
+        _ip_direction(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd)
+        alpha = min(1.0, IP_BOUNDARY * _ip_step_length(n_rows, tn0, lam, x))
+        for i in range(n):
+            sw.v[i] += alpha * sw.d[i]
+        for r in range(n_rows):
+            lam[r] += alpha * x[r, 4]
+            x[r, 0] += alpha * x[r, 5]
+            if tn0[r] >= 0:
+                x[r, 1] += alpha * x[r, 6]
+                x[r, 2] += alpha * x[r, 7]
+                x[r, 3] += alpha * x[r, 8]
+        short = short + 1 if alpha < IP_SHORT else 0
+        if short >= IP_STALL:
+            return _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, it + 1)
+        # converged? the law at Λ and the velocities of its momentum balance
+        _ip_velocities(nbod, n_rows, rows, lam, sw, sw.d)
+        if law_residual(n_rows, rows, bias, lam, eps_n, eps_t, sw, sw.d) <= tol:
+            for i in range(n):
+                sw.v[i] = sw.d[i]
+            _ip_states(n_rows, rows, bias, lam, eps_n, eps_t, sw)
+            return it + 1
+    return _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, IP_MAX)
+
+
+@nb.njit(cache=True)
+def _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, its):
+    """The last iterate as a warm start: v⁺ = v_free + M⁻¹·Jᵀ·Λ in sw.v, its states in
+    sw.st. Returns −its (at least 1)."""
+    _ip_velocities(nbod, n_rows, rows, lam, sw, sw.v)
+    _ip_states(n_rows, rows, bias, lam, eps_n, eps_t, sw)
+    return -max(its, 1)
+
+
+@nb.njit(cache=True)
+def _ip_states(n_rows, rows, bias, lam, eps_n, eps_t, sw):
+    """The rows' states of the interior point's solution (the next step's warm start): a
+    normal row closed where W_rr·Λ_n exceeds u_n + ε_nΛ_n, a tangential row sliding where
+    its trial impulse Λ_t − (u_t + ε_tΛ_t)/W_rr leaves its cone (in that direction)."""
+    rba, rbb, ja, jb, tn0, tn1, tmu = (rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0,
+                                       rows.tn1, rows.tmu)
+    st = sw.st
+    for r in range(n_rows):
+        sw.u[r] = row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r]
+        if tn0[r] < 0:
+            w = _wrr(r, rba, rbb, ja, jb, sw)
+            st[r] = 0 if w * lam[r] > sw.u[r] + eps_n * lam[r] else -1
+    for r in range(n_rows):
+        if tn0[r] >= 0:
+            q0 = tn0[r]
+            q1 = tn1[r]
+            sn = (lam[q0] if st[q0] == 0 else 0.0) + (lam[q1] if q1 >= 0 and st[q1] == 0
+                                                      else 0.0)
+            beta = tmu[r] * max(sn, 0.0)
+            trial = lam[r] - (sw.u[r] + eps_t * lam[r]) / _wrr(r, rba, rbb, ja, jb, sw)
+            st[r] = 1 if trial > beta else (-1 if trial < -beta else 0)
 
 
 @nb.njit(cache=True)
