@@ -782,6 +782,36 @@ def _ip_pair(lam, r, tn0, tn1):
 
 
 @nb.njit(cache=True, inline="always")
+def _ip_pair_x(x, c, r, tn0, tn1):
+    """Σ of column c of x over the normal rows bounding tangential row r."""
+    q1 = tn1[r]
+    v1 = x[max(q1, 0), c]
+    s = x[tn0[r], c]
+    if q1 >= 0:
+        s += v1
+    return s
+
+
+@nb.njit(cache=True)
+def _rows_dot(n_rows, rows, v, out):
+    """out[r] = J_r·v for every row (one pass, the interior-point method's: a single inlined
+    :func:`row_dot` keeps its compile time down)."""
+    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
+    for r in range(n_rows):
+        out[r] = row_dot(r, rba, rbb, ja, jb, v)
+
+
+@nb.njit(cache=True)
+def _rows_add(n_rows, rows, c, scale, out, which):
+    """out += Σ_r scale·c[r]·J_rᵀ over the normal rows (``which`` 1), the tangential ones
+    (2) or all (0), in row order."""
+    rba, rbb, ja, jb, tn0 = rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0
+    for r in range(n_rows):
+        if which == 0 or (which == 1) == (tn0[r] < 0):
+            row_add(r, rba, rbb, ja, jb, scale * c[r], out)
+
+
+@nb.njit(cache=True, inline="always")
 def _ip_cone(x, r, lam, tn0, tn1, tmu):
     """Tangential row r's distances to its cone's edges s₁, s₂, the ratios z₁/s₁, z₂/s₂ and
     the residuals s₁ − β − Λ_t, s₂ − β + Λ_t (β = μ·ΣΛ_n)."""
@@ -794,11 +824,9 @@ def _ip_cone(x, r, lam, tn0, tn1, tmu):
 @nb.njit(cache=True)
 def _ip_velocities(nbod, n_rows, rows, lam, sw, out):
     """out = v_free + M⁻¹·Jᵀ·Λ (sw.g: scratch)."""
-    rba, rbb, ja, jb = rows.rba, rows.rbb, rows.ja, rows.jb
     for i in range(3 * nbod):
         sw.g[i] = 0.0
-    for r in range(n_rows):
-        row_add(r, rba, rbb, ja, jb, lam[r], sw.g)
+    _rows_add(n_rows, rows, lam, 1.0, sw.g, 0)
     for i in range(3 * nbod):
         out[i] = sw.vf[i] + sw.g[i] / sw.mdiag[i]
 
@@ -808,14 +836,15 @@ def _ip_residuals(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw):
     """u = J·v + b in sw.u, the momentum residual M·(v − v_f) − Jᵀ·Λ in sw.g, the rows'
     residuals in sw.ip[:, 10] (normal: R_w = w − u − ε_nΛ; tangential: R_t = u + ε_tΛ_t −
     z₁ + z₂). Returns the mean complementarity product."""
-    rba, rbb, ja, jb, tn0 = rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0
+    tn0 = rows.tn0
     x = sw.ip
     for i in range(3 * nbod):
         sw.g[i] = sw.mdiag[i] * (sw.v[i] - sw.vf[i])
+    _rows_add(n_rows, rows, lam, -1.0, sw.g, 0)
+    _rows_dot(n_rows, rows, sw.v, sw.u)
     gap = 0.0
     for r in range(n_rows):
-        row_add(r, rba, rbb, ja, jb, -lam[r], sw.g)
-        u = row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r]
+        u = sw.u[r] + bias[r]
         sw.u[r] = u
         if tn0[r] < 0:
             x[r, 10] = x[r, 0] - u - eps_n * lam[r]
@@ -831,9 +860,9 @@ def _ip_direction(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd):
     """The Newton direction of the perturbed law for the complementarity targets in sw.ip[:,
     12:14] (docs/theory.md Eq. (9.13)), on the factors of H in sw.lu: into sw.ip[:, 4:9]
     (ΔΛ, Δw or Δs₁, Δz₁, Δs₂, Δz₂) and sw.d (Δv)."""
-    rba, rbb, ja, jb, tn0, tn1, tmu = (rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0,
-                                       rows.tn1, rows.tmu)
+    tn0, tn1, tmu = rows.tn0, rows.tn1, rows.tmu
     x = sw.ip
+    c = sw.bias2  # scratch (R,): the rows' right-hand side terms, then J·Δv
     n = 3 * nbod
     for i in range(n):
         sw.rhs[i] = -sw.g[i]
@@ -841,34 +870,36 @@ def _ip_direction(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd):
         if tn0[r] < 0:
             den = x[r, 0] + eps_n * lam[r]
             x[r, 4] = (x[r, 12] + lam[r] * x[r, 10]) / den
-            row_add(r, rba, rbb, ja, jb, x[r, 4], sw.rhs)
+            c[r] = x[r, 4]
+    _rows_add(n_rows, rows, c, 1.0, sw.rhs, 1)
     for r in range(n_rows):  # tangential rows: ΔΛ_t = f − q·(J_t·Δv + (a₁ − a₂)·μ·ΣΔΛ_n)
         if tn0[r] >= 0:
             s1, s2, a1, a2, rs1, rs2 = _ip_cone(x, r, lam, tn0, tn1, tmu)
             e = -x[r, 10] + x[r, 12] / s1 - x[r, 13] / s2 + a1 * rs1 - a2 * rs2
             x[r, 11] = e
-            f = (e - (a1 - a2) * tmu[r] * _ip_pair(x[:, 4], r, tn0, tn1)) / (eps_t + a1 + a2)
-            row_add(r, rba, rbb, ja, jb, f, sw.rhs)
+            c[r] = (e - (a1 - a2) * tmu[r] * _ip_pair_x(x, 4, r, tn0, tn1)) / (eps_t + a1 + a2)
+    _rows_add(n_rows, rows, c, 1.0, sw.rhs, 2)
     pos = sw.pos
     for j in range(nbod):
-        for c in range(3):
-            sw.x[3 * pos[j] + c] = sw.rhs[3 * j + c]
+        for k in range(3):
+            sw.x[3 * pos[j] + k] = sw.rhs[3 * j + k]
     band_lu_solve(n, sw.lu, kd, sw.x)
     sw.state[3] += 1
     for j in range(nbod):
-        for c in range(3):
-            sw.d[3 * j + c] = sw.x[3 * pos[j] + c]
+        for k in range(3):
+            sw.d[3 * j + k] = sw.x[3 * pos[j] + k]
+    _rows_dot(n_rows, rows, sw.d, c)
     for r in range(n_rows):
         if tn0[r] < 0:
-            jdv = row_dot(r, rba, rbb, ja, jb, sw.d)
+            jdv = c[r]
             dl = x[r, 4] - x[r, 9] * jdv
             x[r, 4] = dl
             x[r, 5] = jdv + eps_n * dl - x[r, 10]
     for r in range(n_rows):
         if tn0[r] >= 0:
             s1, s2, a1, a2, rs1, rs2 = _ip_cone(x, r, lam, tn0, tn1, tmu)
-            jdv = row_dot(r, rba, rbb, ja, jb, sw.d)
-            dbeta = tmu[r] * _ip_pair(x[:, 4], r, tn0, tn1)
+            jdv = c[r]
+            dbeta = tmu[r] * _ip_pair_x(x, 4, r, tn0, tn1)
             dl = (x[r, 11] - jdv - (a1 - a2) * dbeta) / (eps_t + a1 + a2)
             x[r, 4] = dl
             ds1 = dbeta + dl - rs1
@@ -902,6 +933,42 @@ def _ip_step_length(n_rows, tn0, lam, x):
 
 
 @nb.njit(cache=True)
+def _ip_assemble(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd):
+    """The full band of the interior-point method's H = M + Jᵀ·K·J (docs/theory.md
+    Eq. (9.13)) in sw.lu, its weights in sw.ip[:, 9]: the normal rows' d = Λ_n/(w + ε_nΛ_n)
+    first, then every tangential row's q = 1/(ε_t + z₁/s₁ + z₂/s₂) and its couplings
+    −q·(z₁/s₁ − z₂/s₂)·μ·d to its joint's normal rows (one :func:`_add_outer` site: each
+    inlined copy costs compile time)."""
+    rba, rbb, ja, jb, tn0, tn1, tmu = (rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0,
+                                       rows.tn1, rows.tmu)
+    x = sw.ip
+    lu = sw.lu
+    pos = sw.pos
+    _band_mass(nbod, sw, kd)
+    for r in range(n_rows):
+        if tn0[r] < 0:
+            x[r, 9] = lam[r] / (x[r, 0] + eps_n * lam[r])
+    for phase in range(2):
+        for r in range(n_rows):
+            if (phase == 0) != (tn0[r] < 0):
+                continue
+            for k in range(3 if phase == 1 else 1):
+                if phase == 0:
+                    q, coef = r, x[r, 9]
+                elif k == 0:
+                    a1 = x[r, 1] / x[r, 0]
+                    a2 = x[r, 3] / x[r, 2]
+                    x[r, 9] = 1.0 / (eps_t + a1 + a2)
+                    q, coef = r, x[r, 9]
+                else:
+                    q = tn0[r] if k == 1 else tn1[r]
+                    if q < 0:
+                        continue
+                    coef = -x[r, 9] * (x[r, 1] / x[r, 0] - x[r, 3] / x[r, 2]) * tmu[r] * x[q, 9]
+                _add_outer(r, q, coef, rba, rbb, ja, jb, pos, lu, kd)
+
+
+@nb.njit(cache=True)
 def interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol, lamw):
     """The step's contact law (docs/theory.md Eqs. (9.1)–(9.3)) by Mehrotra's
     predictor–corrector interior-point method (Eq. (9.13)): every pair (Λ_n, w = u_n + ε_nΛ_n)
@@ -928,8 +995,10 @@ def interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol, lamw):
     sw.state[0] = 0  # the LU below is the method's own: no factors kept for the states
     # the start: the warm start's impulses moved into the interior
     vs = 1e3 * tol
+    c = sw.bias2  # scratch (R,)
+    _rows_dot(n_rows, rows, sw.vf, c)
     for r in range(n_rows):
-        vs = max(vs, abs(row_dot(r, rba, rbb, ja, jb, sw.vf) + bias[r]))
+        vs = max(vs, abs(c[r] + bias[r]))
     for r in range(n_rows):
         if tn0[r] < 0:
             lam[r] = max(lamw[r], 0.0) + vs / _wrr(r, rba, rbb, ja, jb, sw)
@@ -942,35 +1011,17 @@ def interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol, lamw):
             x[r, 2] = beta - lam[r]
             x[r, 3] = vs
     _ip_velocities(nbod, n_rows, rows, lam, sw, sw.v)
+    _rows_dot(n_rows, rows, sw.v, c)
     for r in range(n_rows):
         if tn0[r] < 0:
-            x[r, 0] = max(row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r] + eps_n * lam[r], 0.0) + vs
+            x[r, 0] = max(c[r] + bias[r] + eps_n * lam[r], 0.0) + vs
     short = 0
     for it in range(IP_MAX):
         gap = _ip_residuals(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw)
-        # the reduced system's weights and H
-        lu = sw.lu
-        pos = sw.pos
-        _band_mass(nbod, sw, kd)
-        for r in range(n_rows):
-            if tn0[r] < 0:
-                x[r, 9] = lam[r] / (x[r, 0] + eps_n * lam[r])
-                _add_outer(r, r, x[r, 9], rba, rbb, ja, jb, pos, lu, kd)
-        for r in range(n_rows):
-            if tn0[r] >= 0:
-                a1 = x[r, 1] / x[r, 0]
-                a2 = x[r, 3] / x[r, 2]
-                q = 1.0 / (eps_t + a1 + a2)
-                x[r, 9] = q
-                _add_outer(r, r, q, rba, rbb, ja, jb, pos, lu, kd)
-                for c in range(2):
-                    qn = tn0[r] if c == 0 else tn1[r]
-                    if qn >= 0:
-                        _add_outer(r, qn, -q * (a1 - a2) * tmu[r] * x[qn, 9], rba, rbb, ja, jb,
-                                   pos, lu, kd)
+        _ip_assemble(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd)
         sw.state[2] += 1
         sw.state[9] += 1
-        if not band_lu(n, lu, kd, sw.lurow):
+        if not band_lu(n, sw.lu, kd, sw.lurow):
             return _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, it)
         # predictor: the targets 0
         for r in range(n_rows):
@@ -1037,8 +1088,9 @@ def _ip_states(n_rows, rows, bias, lam, eps_n, eps_t, sw):
     rba, rbb, ja, jb, tn0, tn1, tmu = (rows.rba, rows.rbb, rows.ja, rows.jb, rows.tn0,
                                        rows.tn1, rows.tmu)
     st = sw.st
+    _rows_dot(n_rows, rows, sw.v, sw.u)
     for r in range(n_rows):
-        sw.u[r] = row_dot(r, rba, rbb, ja, jb, sw.v) + bias[r]
+        sw.u[r] += bias[r]
         if tn0[r] < 0:
             w = _wrr(r, rba, rbb, ja, jb, sw)
             st[r] = 0 if w * lam[r] > sw.u[r] + eps_n * lam[r] else -1
