@@ -85,9 +85,9 @@ IP_SHORT = 0.01
 #: Fraction of the step to the boundary of the positive pairs that is taken.
 IP_BOUNDARY = 0.995
 #: Columns of SolverWork.ip: the variables (0 w or s₁, 1 z₁, 2 s₂, 3 z₂), the direction
-#: (4 ΔΛ, 5 Δw or Δs₁, 6 Δz₁, 7 Δs₂, 8 Δz₂), the reduced system's coefficients (9 its
-#: diagonal weight, 10 its right-hand side term, 11 e_t) and the complementarity targets
-#: (12, 13).
+#: (4 ΔΛ, 5 Δw or Δs₁, 6 Δz₁, 7 Δs₂, 8 Δz₂), the row's weight in H (9: d or q), its
+#: residual (10: R_w or R_t), a tangential row's right-hand side e_t (11) and the
+#: complementarity targets (12, 13).
 IP_COLS = 14
 
 
