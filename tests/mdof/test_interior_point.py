@@ -65,7 +65,9 @@ def test_interior_point_meets_the_law_and_agrees_with_the_semismooth_solve():
             worst_dv = max(worst_dv, np.abs((v_ip - v) * scale).max())
             checked += 1
         kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
-    assert np.abs(x - m.c0[:, 0]).min() > 1e-3  # the wall slid
+    # the wall slid: ½(0.8 − 0.6)·g·(0.04 s)² = 1.57 mm by Newmark before the reversal
+    # (measured 1.60 mm; asserted above 1 mm, so that the sliding steps were checked)
+    assert np.abs(x - m.c0[:, 0]).min() > 1e-3
     assert checked == 15
     # the method stops once the law's natural residual is within its tolerance
     assert worst_res <= tol
@@ -74,4 +76,6 @@ def test_interior_point_meets_the_law_and_agrees_with_the_semismooth_solve():
     # the looser tolerance carried through W's conditioning (measured: 241·tol_u = 2.4e-6
     # m/s at most; asserted within 10·100·tol_u = 1e-5 m/s, 1e-3 of the step's g·h)
     assert worst_dv <= 10.0 * tol
-    assert max(iters) <= cs.IP_MAX // 2  # measured: 6-13 iterations (IP_MAX = 30)
+    # measured: 6-13 iterations; asserted within 20 (round-off may move a count by one or
+    # two), well inside the engine's limit IP_MAX = 30
+    assert max(iters) <= 20
