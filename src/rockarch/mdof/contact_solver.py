@@ -488,11 +488,27 @@ def _ssn_times(nbod, n_rows, rows, st, ie, sw, v, out):
 
 
 @nb.njit(cache=True)
+def _fit_band(nbod, n_rows, rows, sw):
+    """The half-bandwidth of H for the rows marked in sw.act, in the body order sw.pos; where
+    it exceeds the band's room, a new order (:func:`reorder`; the kept factors are then
+    void). −1 if it still does (sw.state[0] = 0)."""
+    rba, rbb = rows.rba, rows.rbb
+    kd = band_needed(n_rows, rba, rbb, sw.act, sw.pos)
+    if 2 * kd + 1 > sw.lu.shape[1]:
+        sw.state[0] = 0
+        reorder(nbod, n_rows, rba, rbb, sw.pos)
+        kd = band_needed(n_rows, rba, rbb, sw.act, sw.pos)
+        if 2 * kd + 1 > sw.lu.shape[1]:
+            return -1
+    return kd
+
+
+@nb.njit(cache=True)
 def _ssn_solve(nbod, n_rows, rows, bias, st, ie, sw, lref, tol, key):
     """sw.v = H⁻¹·rhs for the states ``st``: on the kept LU factors if they were made for
     the same states (refined against the current Jacobian), else on new ones. False if H
     cannot be factorised in the band."""
-    rba, rbb, tn0, tmu = rows.rba, rows.rbb, rows.tn0, rows.tmu
+    tn0, tmu = rows.tn0, rows.tmu
     n = 3 * nbod
     same = sw.state[0] == 2 and sw.frho[0] == key
     if same:
@@ -504,13 +520,9 @@ def _ssn_solve(nbod, n_rows, rows, bias, st, ie, sw, lref, tol, key):
         act = sw.act
         for r in range(n_rows):
             act[r] = st[r] == 0 or (tn0[r] >= 0 and st[r] != 2 and not math.isinf(tmu[r]))
-        kd = band_needed(n_rows, rba, rbb, act, sw.pos)
-        if 2 * kd + 1 > sw.lu.shape[1]:
-            reorder(nbod, n_rows, rba, rbb, sw.pos)
-            kd = band_needed(n_rows, rba, rbb, act, sw.pos)
-            if 2 * kd + 1 > sw.lu.shape[1]:
-                sw.state[0] = 0
-                return False
+        kd = _fit_band(nbod, n_rows, rows, sw)
+        if kd < 0:
+            return False
         _ssn_assemble(nbod, n_rows, rows, bias, st, ie, sw, kd)
         sw.state[2] += 1
         if not band_lu(n, sw.lu, kd, sw.lurow):
@@ -989,8 +1001,8 @@ def interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol, lamw):
     act = sw.act
     for r in range(n_rows):
         act[r] = True
-    kd = band_needed(n_rows, rba, rbb, act, sw.pos)
-    if 2 * kd + 1 > sw.lu.shape[1]:
+    kd = _fit_band(nbod, n_rows, rows, sw)
+    if kd < 0:
         return 0
     sw.state[0] = 0  # the LU below is the method's own: no factors kept for the states
     # the start: the warm start's impulses moved into the interior
