@@ -72,9 +72,13 @@ def main() -> None:
     ap.add_argument("--ratio", type=float, default=2.0, help="PGA / ap,min")
     ap.add_argument("--iterations", type=int, default=12, help="plain iterations traced")
     args = ap.parse_args()
+    rec = ra.el_centro()
+    if not 0.0 <= args.t0 < args.t1 <= rec.duration:
+        ap.error(f"need 0 <= --from < --to <= {rec.duration:g} s (the record)")
+    if args.iterations < 1 or args.ratio <= 0.0:
+        ap.error("--iterations must be >= 1 and --ratio > 0")
     a = ra.system("mdof", wall="20,10", block="0.4,0.2", friction=0.6).assembly
     m = graph_model(a)
-    rec = ra.el_centro()
     mo = rec.scaled(args.ratio * a.ap_min / rec.pga)
     step, predict = gs.contact_step, gr.kin.predict
     now = [0.0]
@@ -111,6 +115,9 @@ def main() -> None:
     print(f"wall 20x10 (205 blocks), El Centro at {args.ratio:g}·ap,min: {len(kept)} steps "
           f"kept in [{args.t0:g}, {args.t1:g}) s ({time.process_time() - t_cpu:.0f} s of CPU "
           "to get there)")
+    if not kept:
+        print("no step solved in that window (the wall rested through it)")
+        return
     print("   t [s]  fact  ip  differ   rows changed per plain iteration (n corner, "
           "t tangential, /back to two iterations before)")
     facts = []
