@@ -54,12 +54,19 @@ from rockarch.mdof.contact_solver import PROX_TOL
 from rockarch.mdof.kernel_data import graph_model
 
 
-def _replay(m, keep, iterations: int) -> tuple[str, int]:
-    """The step's solve and its plain iterations from a copy of its inputs."""
+def _rows(m, keep):
+    """The step's rows made from a copy of its inputs: (rows, workspace, ε_n, ε_t, tol_u,
+    tol_l); the workspace holds them and the warm start."""
     x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, tol_l, margin, ws = \
         copy.deepcopy(keep)
-    nbod = m.mass.shape[0]
     nr = gs.contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws)
+    return nr, ws, eps_n, eps_t, tol_u, tol_l
+
+
+def _replay(m, keep, iterations: int) -> tuple[str, int]:
+    """The step's solve and its plain iterations from a copy of its inputs."""
+    nr, ws, eps_n, eps_t, tol_u, tol_l = _rows(m, keep)
+    nbod = m.mass.shape[0]
     normal = ws.rows.tn0[:nr] < 0
     warm = ws.sw.st[:nr].copy()
     w = copy.deepcopy(ws)
@@ -93,6 +100,7 @@ class _Step:
 
     def __init__(self, m, keep):
         p = problem(m, keep)
+        self.ws = _rows(m, keep)[1]  # its rows, for contact_solver.law_residual
         ws = keep[-1]
         self.eps_n, self.eps_t, self.tol = keep[9], keep[10], PROX_TOL * keep[11]
         self.j = p["j"].tocsr()
@@ -119,13 +127,8 @@ class _Step:
 
     def residual(self, lam):
         """The law's natural residual at Λ and v(Λ) [m/s] (``contact_solver.law_residual``)."""
-        u = self.j @ self.velocities(lam) + self.b
-        n, t, w = self.normal, self.t, self.w
-        res = np.abs(np.minimum(w[n] * lam[n], u[n] + self.eps_n * lam[n]))
-        bt = self.beta(lam)
-        trial = lam[t] - (u[t] + self.eps_t * lam[t]) / w[t]
-        res_t = w[t] * np.abs(lam[t] - np.clip(trial, -bt, bt))
-        return max(res.max(initial=0.0), res_t.max(initial=0.0))
+        return cs.law_residual(self.nr, self.ws.rows, self.ws.bias, lam, self.eps_n,
+                               self.eps_t, self.ws.sw, self.velocities(lam))
 
     def impulses(self, u, bt):
         """Λ(v) of the regularised law at u = J·v + b, friction bounds bt."""
@@ -335,9 +338,7 @@ def _softened(keep, factor: float):
 
 def _engine_factorisations(m, keep) -> int:
     """The factorisations of the engine's solve of the step from a copy of its inputs."""
-    x, y, ph, vx, vy, om, gtol, hh, v_app, eps_n, eps_t, tol_u, tol_l, margin, ws = \
-        copy.deepcopy(keep)
-    nr = gs.contact_rows(m, x, y, ph, vx, vy, om, gtol, hh, v_app, margin, ws)
+    nr, ws, eps_n, eps_t, tol_u, tol_l = _rows(m, keep)
     f0 = int(ws.sw.state[2])
     cs.solve(m.mass.shape[0], nr, ws.rows, ws.bias, ws.lam, eps_n, eps_t, ws.sw, tol_u, tol_l,
              ws.lref[0])
