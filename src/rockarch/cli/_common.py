@@ -259,8 +259,8 @@ ARCH_RISE_OPT = typer.Option(..., help="Rise f of the axis [m].")
 ARCH_THICK_OPT = typer.Option(..., help="Uniform thickness d normal to the axis [m].")
 MDOF_BLOCKS_OPT = typer.Option(None, help="Number of voussoirs N (at least 5).")
 MDOF_H_OPT = typer.Option(MDOF_H_FACTOR, help="Time step × p (safe range 1e-4 … 0.05).")
-MDOF_TOL_OPT = typer.Option(GAP_TOL, help="Contact tolerance / joint thickness "
-                            "(1e-10 … 1e-3).")
+MDOF_TOL_OPT = typer.Option(GAP_TOL, help="Contact tolerance / thinnest joint (1e-10 … "
+                            "1e-3), times δ/0.05 where the overturning rotation δ < 0.05 rad.")
 
 # sweep options (rockarch.core.sweep; docs/sweeps.md), shared by oas and site-oas
 WORKERS_OPT = typer.Option(None, help="Local worker processes (default: every core; small "

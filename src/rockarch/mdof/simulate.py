@@ -54,6 +54,20 @@ def check_h_factor(h_factor) -> float:
     return in_range("h_factor (time step · p)", h_factor, 1e-4, 0.05)
 
 
+#: The overturning rotation [rad] below which the contact tolerance shrinks in proportion
+#: (:func:`contact_tolerance`, docs/theory.md Eq. (6.3a)).
+DELTA_TOL = 0.05
+
+
+def contact_tolerance(assembly: Assembly, gap_tol: float) -> float:
+    """The contact tolerance as a fraction of the thinnest joint (docs/theory.md Eq. (6.3a)):
+    ``gap_tol``, or less for a structure whose overturning rotation δ_ref is below
+    :data:`DELTA_TOL`, ``gap_tol``·δ_ref/DELTA_TOL, so that it stays below
+    ``gap_tol``/DELTA_TOL (2e-3 by default) of a joint's opening at overturning, d·δ_ref
+    (thin arches: their hinges open by little more than the default tolerance)."""
+    return gap_tol * min(1.0, assembly.delta_ref / DELTA_TOL)
+
+
 def check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
     in_range("t_free", t_free, 0.0, math.inf, hi_open=True)
     check_h_factor(h_factor)
@@ -215,6 +229,8 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     """Simulate the assembly on the ground motion (used as given, m/s²).
 
     ``p``: run the same shape scaled to frequency parameter p (default: its own size).
+    ``gap_tol``: the contact tolerance, a fraction of the thinnest joint (less for thin
+    structures, :func:`contact_tolerance`).
     Free motion continues ``t_free`` s after the motion ends, or until rest or collapse.
     ``record_every``: record every k-th step (raised when the history would exceed
     :data:`rockarch.core.limits.MAX_HISTORY_BYTES`). ``through_collapse``: follow the blocks
@@ -305,6 +321,7 @@ def _simulate(assembly: Assembly, motion: GroundMotion | None, p: float | None,
     h = h_factor / p_act
     tk, ak, name, duration = _motion_arrays(motion)
     t_end = duration + t_free
+    gap_tol = contact_tolerance(assembly, gap_tol)
     nb_, nj = assembly.n_blocks, assembly.n_joints
     n_steps, rec = _plan(t_end, h, nb_, nj, record_every)
     cap = n_steps // rec + 2
@@ -366,7 +383,8 @@ def simulate_batch(assembly: Assembly, motion: GroundMotion, p, ratio, *,
             _plan(float(unit.duration + t_free), float(np.min(hs)), assembly.n_blocks,
                   assembly.n_joints, 1)
         args = (model, scales, tk, ak, np.ascontiguousarray(rf * ap), hs,
-                float(unit.duration + t_free), float(unit.duration), gap_tol)
+                float(unit.duration + t_free), float(unit.duration),
+                contact_tolerance(assembly, gap_tol))
         _announce(chain)
         if chain:
             out = _k.run_batch(*args)
