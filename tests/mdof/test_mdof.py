@@ -308,6 +308,18 @@ def test_a_thin_arch_does_not_depend_on_the_contact_tolerance(d):
         assert r.overturned and four.simulate(ra.pulse("sine", period=1.0), ratio=1.2).overturned
 
 
+def test_a_semicircular_arch_has_a_small_delta_and_the_tolerance_follows_it():
+    # rockarch.mdof.simulate.contact_tolerance: δ_ref is small for semicircular arches
+    # however thick (d/l = 0.06 here: 0.021 rad), and with the unscaled tolerance this one
+    # stood under a sine pulse of 1 s at 1.3·ap,min (0.65 of δ) where it overturns with
+    # 1e-6; now it overturns with both (t = 1.20 and 1.25 s; also at h/2, h/4 and with the
+    # amplitude moved by ±1e-3: its boundary lies between 1.25 and 1.3·ap,min)
+    a = ra.system("mdof", shape="circular", span=10, rise=5, thickness=0.6, blocks=20).assembly
+    assert a.delta_ref < 0.025
+    m = ra.pulse("sine", period=1.0, ap=1.3 * a.ap_min)
+    assert mdof.simulate(a, m).overturned and mdof.simulate(a, m, gap_tol=1e-6).overturned
+
+
 def test_steps_refined_at_impacts_place_them_within_a_third_of_the_step():
     # docs/theory.md Eq. (6.5). One block (the test above) at a coarse step, h·p = 0.01:
     # the peak after the first impact is within 2 % of Housner's exact equation
