@@ -16,8 +16,9 @@ the associative value stays available (``friction="associative"``).
 
 The dual solution is the collapse mechanism: a virtual velocity (u, v, ω) per block, from
 which the contacts that open or slide follow (:class:`Collapse`). Its equivalent block
-(Eq. (10.5)) gives the reference frequency parameter p and neutral angle δ of a general
-assembly.
+(Eq. (10.5)), with the neutral angle of the mechanism's finite motion (Eq. (10.5b),
+:mod:`rockarch.mdof.linkage`), gives the reference frequency parameter p and neutral angle δ
+of a general assembly.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from rockarch.core.constants import G
 from rockarch.mdof import macroblock as mb
 from rockarch.mdof import nonassoc as na
 from rockarch.mdof import statics_cache as sc
+from rockarch.mdof.linkage import corner_velocity, neutral_angle
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
@@ -64,8 +66,8 @@ class Collapse:
     normal_force, tangential_force : (nj, 2) arrays
         Corner forces at collapse, in units of g·(mass unit).
     p, delta : float
-        Equivalent-block frequency parameter [1/s] and neutral angle [rad], Eq. (10.5)
-        (nan for a mechanism without rotation).
+        Equivalent-block frequency parameter [1/s] and neutral angle [rad], Eqs. (10.5),
+        (10.5b) (nan for a mechanism without rotation).
     converged : bool
         False if the non-associative iteration did not converge (then ap_min is the least
         λ of its iterates, and a RuntimeWarning was issued).
@@ -167,7 +169,7 @@ def _mechanism(dual, mass, inertia, centroid, corners, normal, body_a, body_b, d
                                                                            vel[:, 1]).max()
     vel = vel / scale if scale > 0 else vel
     tang = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
-    rel = _corner_velocity(vel, centroid, corners, body_b) - _corner_velocity(
+    rel = corner_velocity(vel, centroid, corners, body_b) - corner_velocity(
         vel, centroid, corners, body_a)
     tol = 1e-6 * max(float(np.abs(rel).max()), 1e-300)
     opening = np.einsum("kcd,kd->kc", rel, normal) > tol
@@ -175,22 +177,15 @@ def _mechanism(dual, mass, inertia, centroid, corners, normal, body_a, body_b, d
     return vel, opening, slide
 
 
-def _corner_velocity(vel, centroid, corners, body) -> np.ndarray:
-    """(nj, 2, 2) velocity at both corners of every joint of the rigid motion ``vel`` of
-    ``body`` (zero for the ground, body -1)."""
-    on = (body >= 0)[:, None, None]
-    b = np.where(body >= 0, body, 0)
-    u, v, om = vel[b, 0][:, None], vel[b, 1][:, None], vel[b, 2][:, None]
-    r = corners - centroid[b][:, None, :]
-    return np.where(on, np.stack([u - om * r[..., 1], v + om * r[..., 0]], axis=-1), 0.0)
-
-
 def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, float]:
     """(p, delta) of the block whose rocking starts like the mechanism (Eq. 10.5).
 
     With the mechanism coordinate θ the largest block rotation, Q = Σ m·(u, v) and
     M* = Σ m·(u² + v²) + I·ω²: p² = g·|Q| / M*, tan δ = Q_y / Q_x (for one block: Housner's
-    p and α). nan if no block rotates.
+    p and α). nan if no block rotates. A rocking mechanism of several rigid parts then
+    takes the neutral angle of its finite motion, :func:`rockarch.mdof.linkage.neutral_angle`,
+    and p² = B_v/(A·δ) of Eq. (3.4) on the rotation of its leading part (rate |ω_l|):
+    p² = g·|Q|·sin δ_lin·|ω_l|/(M*·δ) (Eq. (10.5b), in :func:`limit_analysis`).
     """
     u, v, om = velocity.T
     if np.abs(om).max() < 1e-9:
@@ -316,6 +311,11 @@ def _collapse(state, geom, g: float, converged: bool, iterations: int) -> Collap
     if lam >= LAMBDA_CAP * (1 - 1e-9):
         lam = math.inf
     p, delta = equivalent_block(mass, inertia, vel, g)
+    if math.isfinite(lam) and not slide.any():  # a rocking mechanism: its finite δ (10.5b)
+        d, rate = neutral_angle(mass, geom[2], geom[3], geom[5], geom[6], vel, direction,
+                                delta)
+        if math.isfinite(d) and d != delta:  # Eq. (3.4) on the leading part's rotation
+            p, delta = p * math.sqrt(math.sin(delta) * rate / d), d
     x = state.x
     return Collapse(ap_min=lam * g, lambda_=lam, direction=direction, velocity=vel,
                     opening=opening, sliding=slide, normal_force=x[:2 * nj].reshape(nj, 2),
