@@ -87,7 +87,12 @@ def cases(quick: bool) -> list[tuple[str, list, list, float]]:
              0.5),
             ("blocks 0.3 x 1 and 0.3 x 0.8 side by side, mu 0.7",
              [[[0, 0], [0.3, 0], [0.3, 1], [0, 1]], [[0.3, 0], [0.6, 0], [0.6, 0.8], [0.3, 0.8]]],
-             [], 0.7)]
+             [], 0.7),
+            # held-out walls checked 2026-11-30 (docs/assemblies.md, "Several solutions"):
+            # LMGC90 stands above rockarch's end wedge already at ordinary friction
+            ("wall 4 x 4, 0.25 x 0.25 blocks, mu 0.65", _polys(bd.wall(4, 4, 0.25, 0.25)), [],
+             0.65),
+            ("wall 3 x 3, 0.3 x 0.4 blocks, mu 0.8", _polys(bd.wall(3, 3, 0.3, 0.4)), [], 0.8)]
     return out
 
 
