@@ -102,8 +102,10 @@ def test_missing_file_and_directory(tmp_path):
         ("time acc\n", "no samples"),
         ("0 1\n", "at least 2 samples, found 1"),
         ("0 1\n0.01 2\n0.02\n", "line 3 has 1 column"),
+        ("0,00;0,5\n0,01;0,25\n", "line 1 has 4 column.*decimal commas"),
     ],
-    ids=["third-column", "nan", "non-uniform", "backwards", "header-only", "one", "short"],
+    ids=["third-column", "nan", "non-uniform", "backwards", "header-only", "one", "short",
+         "decimal-comma"],
 )
 def test_two_column_errors_name_the_line(tmp_path, text, msg):
     with pytest.raises(ValueError, match=msg):

@@ -2,6 +2,7 @@
 thrust-line LP as an independent formulation, the rocking frame of the SDOF model."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from rockarch.mdof import builders as bd
 from rockarch.mdof import polygons as pg
 from rockarch.mdof import statics
 from rockarch.mdof.assembly_file import assembly_from_dict
+from rockarch.motion.records import UnitsWarning
 from rockarch.rocking import mechanism as mc
 
 # Tolerance of LP results against closed forms: HiGHS solves to ~1e-9 relative (its
@@ -217,6 +219,18 @@ def test_json_assembly_with_contact_friction():
         assembly_from_dict({**data, "blocks": [{"polygon": _rect(0, 0, 1, 1), "mass": 3}]})
     with pytest.raises(ValueError, match="friction coefficient"):
         assembly_from_dict({**data, "friction": -1})
+
+
+def test_json_assembly_in_millimetres_warns():
+    blocks = [{"polygon": _rect(0, 0, 1, 1)}, {"polygon": _rect(0.25, 1, 0.5, 1)}]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assembly_from_dict({"blocks": blocks})   # 2 m across: no warning
+    mm = [{"polygon": (np.asarray(b["polygon"]) * 1000).tolist()} for b in blocks]
+    with pytest.warns(UnitsWarning, match="2000 m across: coordinates are in metres"):
+        a = assembly_from_dict({"blocks": mm})
+    # still read as given (ap,min is scale-free, p is not)
+    assert a.ap_min == pytest.approx(assembly_from_dict({"blocks": blocks}).ap_min, rel=1e-9)
 
 
 def test_supports_move_with_the_ground():

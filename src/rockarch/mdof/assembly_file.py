@@ -24,16 +24,21 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 from pathlib import Path
 
 from rockarch.core import limits
 from rockarch.core.constants import G
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.builders import friction_value, from_polygons
+from rockarch.motion.records import UnitsWarning
 
 #: Largest size of an assembly file per block allowed by the block limit (a polygon of
 #: hundreds of vertices).
 MAX_BYTES_PER_BLOCK = 20_000
+#: Extent [m] of a plausible structure (a laboratory model to a viaduct): outside it an
+#: assembly file's coordinates are probably not in metres, and reading it warns.
+PLAUSIBLE_SIZE = (1e-3, 1e3)
 
 _TOP = {"name", "friction", "blocks", "supports", "contacts"}
 _BLOCK = {"polygon", "density", "name"}
@@ -95,8 +100,13 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
     if not isinstance(supports, list):
         raise ValueError(f"{source}: 'supports' must be a list of polygons")
     name = str(data.get("name", source))
-    return from_polygons(polys, density=dens, mu=default, contacts=contacts,
-                         supports=supports, names=names, g=g, name=name, kind="assembly")
+    out = from_polygons(polys, density=dens, mu=default, contacts=contacts,
+                        supports=supports, names=names, g=g, name=name, kind="assembly")
+    if not PLAUSIBLE_SIZE[0] <= out.size <= PLAUSIBLE_SIZE[1]:
+        warnings.warn(UnitsWarning(
+            f"{source}: the structure is {out.size:.4g} m across: coordinates are in metres "
+            "(millimetres? divide them by 1000)"), stacklevel=2)
+    return out
 
 
 def read_assembly(path, *, mu=None, g: float = G) -> Assembly:

@@ -162,8 +162,10 @@ def _two_numbers(path, k: int, s: str) -> tuple[float, float] | None:
     except ValueError:
         return None
     if len(vals) != 2:
+        hint = (": decimal commas? write numbers with a point (0.01, not 0,01)"
+                if len(vals) == 4 and "," in s and "." not in s else "")
         raise ValueError(f"{path}: line {k} has {len(vals)} column(s), expected 2 "
-                         "(time, acceleration)")
+                         f"(time, acceleration){hint}")
     return vals[0], vals[1]
 
 
