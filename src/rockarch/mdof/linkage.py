@@ -24,6 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 
 #: Relative velocity (over the largest) below which a joint corner is a hinge (the LP's
 #: duals are accurate to ~1e-9 of their scale).
@@ -69,24 +71,14 @@ def linkage(mass, centroid, corners, body_a, body_b, velocity,
     for body in (np.asarray(body_a), np.asarray(body_b)):
         ends.append(np.where((body >= 0) & moving[np.maximum(body, 0)], body, nb))
     end_a, end_b = ends
-    parent = list(range(nb + 1))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for k in np.flatnonzero(pivot.all(axis=1)):
-        ra, rb = root(int(end_a[k])), root(int(end_b[k]))
-        if nb in (ra, rb):  # welded to the ground
-            parent[ra + rb - nb] = nb
-        elif ra != rb:
-            parent[max(ra, rb)] = min(ra, rb)
-    ground = root(nb)
-    roots = sorted({root(i) for i in range(nb) if moving[i]} - {ground})
+    weld = np.flatnonzero(pivot.all(axis=1))
+    graph = coo_matrix((np.ones(len(weld)), (end_a[weld], end_b[weld])), shape=(nb + 1,) * 2)
+    label = connected_components(graph, directed=False)[1]
+    # parts: the components of moving blocks not welded to the ground, by their first block
+    roots = list(dict.fromkeys(label[i] for i in range(nb) if moving[i]
+                               and label[i] != label[nb]))
     part = {r: j for j, r in enumerate(roots)}
-    of = np.array([part.get(root(i), -1) for i in range(nb + 1)])
+    of = np.array([part.get(label[i], -1) for i in range(nb + 1)])
     pm = np.array([mass[of[:nb] == j].sum() for j in range(len(roots))])
     pc = np.array([(mass[of[:nb] == j, None] * np.asarray(centroid)[of[:nb] == j]).sum(axis=0)
                    / pm[j] for j in range(len(roots))]).reshape(-1, 2)
