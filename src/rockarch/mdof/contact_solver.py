@@ -37,6 +37,10 @@ import numpy as np
 
 from rockarch.core.jit_struct import JitStruct, jit_struct
 
+#: Integer constants reach a kernel as ``_int(C)``, an int64: numba compiles a kernel once
+#: per literal value it is called with (docs/performance.md, "Compile time").
+_int = np.int64
+
 #: A pivot of the banded LU below this fraction of its row's largest entry: H is singular.
 PIVOT_TOL = 1e-13
 #: Refinements of a solve on LU factors made for an earlier Jacobian.
@@ -724,7 +728,8 @@ def solve(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol_u, tol_l, lref):
         lamk[r] = lam[r]  # the warm start, kept for the proximal steps
         sst2[r] = st[r]
     _weights(n_rows, tn0, eps_n, eps_t, 0.0, sw.ie)
-    its = semismooth(nbod, n_rows, rows, bias, lam, sw, tol_u, tol_l, lref, SSN_FIRST, 0.0)
+    its = semismooth(nbod, n_rows, rows, bias, lam, sw, tol_u, tol_l, lref, _int(SSN_FIRST),
+                     0.0)
     if its >= 0:
         return its
     total = SSN_FIRST
@@ -750,7 +755,8 @@ def solve(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol_u, tol_l, lref):
         for r in range(n_rows):
             bias2[r] = bias[r] - rho * lamk[r]
         _weights(n_rows, tn0, eps_n, eps_t, rho, sw.ie)
-        its = semismooth(nbod, n_rows, rows, sw.bias2, lam, sw, tol_u, tol_l, lref, SSN_MAX, rho)
+        its = semismooth(nbod, n_rows, rows, sw.bias2, lam, sw, tol_u, tol_l, lref,
+                         _int(SSN_MAX), rho)
         if its < 0:
             total += SSN_MAX
             for r in range(n_rows):  # back to the last proximal iterate, more weight on it
@@ -840,7 +846,7 @@ def _ip_velocities(nbod, n_rows, rows, lam, sw, out):
     """out = v_free + M⁻¹·Jᵀ·Λ (sw.g: scratch)."""
     for i in range(3 * nbod):
         sw.g[i] = 0.0
-    _rows_add(n_rows, rows, lam, 1.0, sw.g, 0)
+    _rows_add(n_rows, rows, lam, 1.0, sw.g, _int(0))
     for i in range(3 * nbod):
         out[i] = sw.vf[i] + sw.g[i] / sw.mdiag[i]
 
@@ -854,7 +860,7 @@ def _ip_residuals(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw):
     x = sw.ip
     for i in range(3 * nbod):
         sw.g[i] = sw.mdiag[i] * (sw.v[i] - sw.vf[i])
-    _rows_add(n_rows, rows, lam, -1.0, sw.g, 0)
+    _rows_add(n_rows, rows, lam, -1.0, sw.g, _int(0))
     _rows_dot(n_rows, rows, sw.v, sw.u)
     gap = 0.0
     for r in range(n_rows):
@@ -885,14 +891,14 @@ def _ip_direction(nbod, n_rows, rows, lam, eps_n, eps_t, sw, kd):
             den = x[r, 0] + eps_n * lam[r]
             x[r, 4] = (x[r, 12] + lam[r] * x[r, 10]) / den
             c[r] = x[r, 4]
-    _rows_add(n_rows, rows, c, 1.0, sw.rhs, 1)
+    _rows_add(n_rows, rows, c, 1.0, sw.rhs, _int(1))
     for r in range(n_rows):  # tangential rows: ΔΛ_t = f − q·(J_t·Δv + (a₁ − a₂)·μ·ΣΔΛ_n)
         if tn0[r] >= 0:
             s1, s2, a1, a2, rs1, rs2 = _ip_cone(x, r, lam, tn0, tn1, tmu)
             e = -x[r, 10] + x[r, 12] / s1 - x[r, 13] / s2 + a1 * rs1 - a2 * rs2
             x[r, 11] = e
             c[r] = (e - (a1 - a2) * tmu[r] * _ip_pair_x(x, 4, r, tn0, tn1)) / (eps_t + a1 + a2)
-    _rows_add(n_rows, rows, c, 1.0, sw.rhs, 2)
+    _rows_add(n_rows, rows, c, 1.0, sw.rhs, _int(2))
     pos = sw.pos
     for j in range(nbod):
         for k in range(3):
@@ -1082,7 +1088,7 @@ def interior_point(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, tol, lamw):
                 sw.v[i] = sw.d[i]
             _ip_states(n_rows, rows, bias, lam, eps_n, eps_t, sw)
             return it + 1
-    return _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, IP_MAX)
+    return _ip_give_up(nbod, n_rows, rows, bias, lam, eps_n, eps_t, sw, _int(IP_MAX))
 
 
 @nb.njit(cache=True)
