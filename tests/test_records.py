@@ -1,4 +1,7 @@
-"""Record readers: PEER NGA .AT2 (new and old headers), two-column text, bad files."""
+"""Record readers: PEER NGA .AT2 (new and old headers), ESM ASCII, two-column text, bad
+files."""
+
+import re
 
 import numpy as np
 import pytest
@@ -137,3 +140,97 @@ def test_two_column_without_units_warns_on_an_implausible_pga(tmp_path):
     with pytest.warns(UnitsWarning, match="not plausible: wrong units"):
         read_record(f)
     assert read_record(f, units="mm/s2").pga == pytest.approx(300.0)
+
+
+# --------------------------------------------------------------------------- ESM / ITACA ASCII
+
+
+def _esm_text(values_cm, dt=0.01, units="cm/s^2", data_type="ACCELERATION", ndata=None,
+              drop=()):
+    """An ESM ASCII file as the Engineering Strong-Motion database writes one: 64 header
+    lines ``KEY: value`` (EVENT_NAME first), then one sample a line."""
+    keys = {
+        "EVENT_NAME": "CENTRAL_ITALY", "EVENT_ID": "EMSC-20160824_0000006",
+        "EVENT_DATE_YYYYMMDD": "20160824", "EVENT_TIME_HHMMSS": "013632",
+        "EVENT_LATITUDE_DEGREE": "42.6983", "EVENT_LONGITUDE_DEGREE": "13.2335",
+        "EVENT_DEPTH_KM": "8.1", "HYPOCENTER_REFERENCE": "INGV", "MAGNITUDE_W": "6.0",
+        "NETWORK": "IT", "STATION_CODE": "AMT", "STATION_NAME": "AMATRICE",
+        "STATION_LATITUDE_DEGREE": "42.632600", "STATION_LONGITUDE_DEGREE": "13.286000",
+        "STATION_ELEVATION_M": "0", "LOCATION": "", "SENSOR_DEPTH_M": "0", "VS30_M/S": "",
+        "SITE_CLASSIFICATION_EC8": "B*", "MORPHOLOGIC_CLASSIFICATION": "",
+        "EPICENTRAL_DISTANCE_KM": "8.5", "EARTHQUAKE_BACKAZIMUTH_DEGREE": "302.6",
+        "DATE_TIME_FIRST_SAMPLE_YYYYMMDD_HHMMSS": "20160824_013636.000",
+        "DATE_TIME_FIRST_SAMPLE_PRECISION": "milliseconds",
+        "SAMPLING_INTERVAL_S": f"{dt:.6f}", "NDATA": str(ndata or len(values_cm)),
+        "DURATION_S": f"{dt * len(values_cm):.3f}", "STREAM": "HNE", "UNITS": units,
+        "INSTRUMENT": "sensor = Unknown [Unknown] | digitizer = Unknown [Unknown]",
+        "INSTRUMENT_ANALOG/DIGITAL": "D", "INSTRUMENTAL_FREQUENCY_HZ": "",
+        "INSTRUMENTAL_DAMPING": "", "FULL_SCALE_G": "", "N_BIT_DIGITAL_CONVERTER": "",
+        "PGA_CM/S^2": f"{np.abs(values_cm).max():.6f}", "TIME_PGA_S": "",
+        "BASELINE_CORRECTION": "BASELINE REMOVED", "FILTER_TYPE": "BUTTERWORTH",
+        "FILTER_ORDER": "2", "LOW_CUT_FREQUENCY_HZ": "0.100",
+        "HIGH_CUT_FREQUENCY_HZ": "30.000", "LATE/NORMAL_TRIGGERED": "NT",
+        "DATABASE_VERSION": "ESM 2018", "HEADER_FORMAT": "DYNA 1.2",
+        "DATA_TYPE": data_type, "PROCESSING": "manual (Paolucci et al., 2011)",
+        "DATA_TIMESTAMP_YYYYMMDD_HHMMSS": "20180101_000000.000",
+        "DATA_LICENSE": "CC BY 4.0", "DATA_CITATION": "Luzi et al. (2016)",
+        "DATA_CREATOR": "ESM", "ORIGINAL_DATA_MEDIATOR_CITATION": "",
+        "ORIGINAL_DATA_MEDIATOR": "", "ORIGINAL_DATA_CREATOR_CITATION": "",
+        "ORIGINAL_DATA_CREATOR": "",
+    }
+    for k in drop:
+        keys.pop(k)
+    lines = [f"{k}: {v}" for k, v in keys.items()]
+    lines += [f"USER{i}:" for i in range(1, 65 - len(lines))]
+    return "\n".join(lines + [f"{v:.6E}" for v in values_cm]) + "\n"
+
+
+def test_esm_file_reads_as_the_same_record(tmp_path):
+    """El Centro written as an ESM file in cm/s² reads back as the bundled record: the same
+    step and samples within the file's 7 significant digits (5e-7 relative)."""
+    ref = el_centro()
+    path = tmp_path / "IT.AMT..HNE.D.20160824.013632.C.ACC.ASC"
+    path.write_text(_esm_text(ref.a * 100.0, dt=ref.t[1] - ref.t[0]))
+    got = read_record(path, units="g")  # an ESM file states its units; --units is for text
+    assert got.meta["format"] == "ESM" and got.meta["npts"] == ref.t.size
+    assert got.name == f"{path.name} (CENTRAL_ITALY AMT HNE)"
+    np.testing.assert_allclose(got.t, ref.t, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(got.a, ref.a, rtol=5e-7, atol=0)
+    # any suffix: the first header line decides
+    other = tmp_path / "amatrice.txt"
+    other.write_text(path.read_text())
+    assert read_record(other).meta["format"] == "ESM"
+
+
+def test_esm_units_metadata_and_folder(tmp_path):
+    """A folder's .ASC files are read with their units and header metadata; the vertical
+    stream (HNZ) is left out as an .AT2 vertical is."""
+    from rockarch.motion.suite import read_suite
+
+    vals = np.array([0.0, 100.0, -200.0, 50.0, 0.0])  # cm/s²: PGA 0.2 g, a plausible one
+    (tmp_path / "a.ASC").write_text(_esm_text(vals / 100.0, units="m/s^2"))
+    (tmp_path / "b.asc").write_text(_esm_text(vals / 100.0 / G_STANDARD, units="g"))
+    (tmp_path / "c.ASC").write_text(_esm_text(vals).replace("STREAM: HNE", "STREAM: HNZ"))
+    suite = read_suite(tmp_path)
+    assert [r.name for r in suite.records] == ["a.ASC", "b.asc"]
+    assert "c.ASC: vertical component left out" in suite.notes[0]
+    for r in suite.records:  # the file's 7 significant digits: 5e-7 relative
+        np.testing.assert_allclose(r.motion.a, vals / 100.0, rtol=5e-7)
+        assert (r.event, r.year, r.station, r.component, r.magnitude) == (
+            "CENTRAL_ITALY", 2016, "AMATRICE", "HNE", 6.0)
+        assert r.vs30 is None  # an empty header value
+
+
+@pytest.mark.parametrize("kwargs, msg", [
+    ({"ndata": 9}, "header says NDATA=9 but the file holds 5 values"),
+    ({"drop": ("SAMPLING_INTERVAL_S",)}, "needs the header line SAMPLING_INTERVAL_S"),
+    ({"drop": ("UNITS",)}, "needs the header line UNITS"),
+    ({"data_type": "VELOCITY"}, "not an acceleration record (DATA_TYPE: VELOCITY)"),
+    ({"units": "cm/s"}, "unknown acceleration unit 'cm/s'"),
+    ({"dt": 0.0}, "SAMPLING_INTERVAL_S must be > 0"),
+])
+def test_esm_bad_files_give_one_clear_message(tmp_path, kwargs, msg):
+    path = tmp_path / "r.ASC"
+    path.write_text(_esm_text(np.array([0.0, 1.0, -2.0, 0.5, 0.0]), **kwargs))
+    with pytest.raises(ValueError, match=re.escape(msg)):
+        read_record(path)

@@ -1,4 +1,5 @@
-"""Readers for strong-motion records: PEER NGA ``.AT2`` files and two-column text.
+"""Readers for strong-motion records: PEER NGA ``.AT2`` files, ESM/ITACA ASCII files and
+two-column text.
 
 Records are returned as :class:`rockarch.motion.signals.GroundMotion` in m/s² with uniform
 time steps.
@@ -71,6 +72,24 @@ def _check_samples(path, acc: np.ndarray) -> None:
         raise ValueError(f"{path}: every sample is zero")
 
 
+def _samples(path, body: str, npts: int, key: str, factor: float, where: str) -> np.ndarray:
+    """The ``npts`` whitespace-separated values of ``body`` times ``factor`` [m/s²], checked
+    (``key``: the header's count, NPTS or NDATA; ``where``: the values' place, for errors)."""
+    try:  # numpy's C parser: 8 bytes per value, no Python float objects
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
+            values = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
+    except (ValueError, DeprecationWarning):
+        raise ValueError(f"{path}: the sample values{where} are not all numbers") from None
+    if values.size != npts:
+        raise ValueError(f"{path}: header says {key}={npts} but the file holds {values.size} "
+                         "values (truncated or corrupted file)")
+    _check_samples(path, values)
+    values = values * factor
+    check_acceleration(path, values)
+    return values
+
+
 def read_at2(path: str | Path) -> GroundMotion:
     """Read a PEER NGA ``.AT2`` acceleration file (NGA-West2 and older NGA header styles).
 
@@ -107,23 +126,79 @@ def read_at2(path: str | Path) -> GroundMotion:
         cut = text.find("\n", cut) + 1 if cut >= 0 else cut
         cut = cut if cut > 0 else -1
     body = "" if cut < 0 else text[cut:].replace("D", "E").replace("d", "e")
-    try:  # numpy's C parser: 8 bytes per value, no Python float objects
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
-            values = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
-    except (ValueError, DeprecationWarning):
-        raise ValueError(f"{path}: the sample values are not all numbers") from None
-    if values.size != npts:
-        raise ValueError(f"{path}: header says NPTS={npts} but the file holds {values.size} "
-                         "values (truncated or corrupted file)")
-    _check_samples(path, values)
-    values = values * factor
-    check_acceleration(path, values)
+    values = _samples(path, body, npts, "NPTS", factor, "")
     t = np.arange(npts) * dt
     title = header[1].strip()
     meta = {"source": str(path), "title": title, "dt": dt, "npts": npts, "format": "AT2",
             "units_in_file": um.group(1) if um else "G"}
     return GroundMotion(t, values, f"{path.name} ({title})", meta)
+
+
+#: First header key of an ESM (Engineering Strong-Motion database, ORFEUS) or ITACA ASCII
+#: file: ``KEY: value`` header lines, then one sample a line.
+ESM_FIRST_KEY = "EVENT_NAME:"
+_ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.()-]*)\s*:(.*)$")  # VS30_M/S, PGA_CM/S^2
+
+
+def is_esm(path: str | Path) -> bool:
+    """True if the file's first line is an ESM/ITACA header line (``EVENT_NAME: ...``)."""
+    try:
+        first = next(_lines(Path(path)), "")
+    except OSError:
+        return False
+    return first.lstrip().upper().startswith(ESM_FIRST_KEY)
+
+
+def read_esm(path: str | Path) -> GroundMotion:
+    """Read an ESM / ITACA ASCII acceleration file (Engineering Strong-Motion database).
+
+    The header is ``KEY: value`` lines (64 in ESM files); the reader uses ``NDATA``,
+    ``SAMPLING_INTERVAL_S``, ``UNITS`` (cm/s^2 in ESM acceleration files) and, where
+    present, ``DATA_TYPE`` (must be an acceleration) and ``EVENT_NAME``, ``STATION_CODE``,
+    ``STREAM`` for the record's name. One sample a line follows.
+    """
+    path = Path(path)
+    _check_file(path)
+    text = _read_text(path)
+    if "\x00" in text[:8192]:
+        raise ValueError(f"{path}: a binary file, not an ESM ASCII record")
+    lines = text.splitlines()
+    header: dict[str, str] = {}
+    n_head = 0
+    for line in lines[:1000]:
+        m = _ESM_KEY.match(line.strip().removeprefix("\ufeff"))
+        if m is None:
+            break
+        header[m.group(1)] = m.group(2).strip()
+        n_head += 1
+    for key in ("NDATA", "SAMPLING_INTERVAL_S", "UNITS"):
+        if key not in header:
+            raise ValueError(f"{path}: an ESM ASCII file needs the header line {key}: ... "
+                             f"(found {n_head} header lines without it)")
+    kind = header.get("DATA_TYPE", "ACCELERATION").upper()
+    if "ACCELERATION" not in kind:
+        raise ValueError(f"{path}: not an acceleration record (DATA_TYPE: {kind})")
+    try:
+        npts = int(header["NDATA"])
+        dt = float(header["SAMPLING_INTERVAL_S"])
+    except ValueError:
+        raise ValueError(f"{path}: NDATA and SAMPLING_INTERVAL_S must be numbers, found "
+                         f"{header['NDATA']!r} and {header['SAMPLING_INTERVAL_S']!r}") from None
+    if npts > limits.max_samples():
+        raise limits.too_many(f"{path} (NDATA={npts})", npts, "samples", limits.max_samples(),
+                              "shorten or decimate the record")
+    if not (dt > 0 and math.isfinite(dt)):
+        raise ValueError(f"{path}: SAMPLING_INTERVAL_S must be > 0, found {dt}")
+    _check_dt(path, dt)
+    factor = _units_factor(header["UNITS"])
+    values = _samples(path, "\n".join(lines[n_head:]), npts, "NDATA", factor,
+                      f" after the header (line {n_head + 1} on)")
+    parts = [header.get(k, "") for k in ("EVENT_NAME", "STATION_CODE", "STREAM")]
+    title = " ".join(p for p in parts if p)
+    meta = {"source": str(path), "title": title, "dt": dt, "npts": npts, "format": "ESM",
+            "units_in_file": header["UNITS"], "header": header}
+    return GroundMotion(np.arange(npts) * dt, values,
+                        f"{path.name} ({title})" if title else path.name, meta)
 
 
 #: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
@@ -295,11 +370,12 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
 
 
 def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
-    """Read a record by its file type: ``.AT2`` as PEER, anything else as two-column text.
+    """Read a record by its file type: ``.AT2`` as PEER, a file whose first line is
+    ``EVENT_NAME: ...`` as ESM/ITACA ASCII, anything else as two-column text.
 
     ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
-    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2 files state
-    their own.
+    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2 and ESM files
+    state their own.
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a file path (str or Path), got {type(path).__name__}")
@@ -309,6 +385,8 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     path = Path(path)
     if path.suffix.lower() == ".at2":
         return read_at2(path)
+    if is_esm(path):
+        return read_esm(path)
     motion = read_two_column(path, units=units or "m/s2")
     if units is None and motion.pga <= G_LIKE_PEAK:
         warnings.warn(UnitsWarning(

@@ -38,6 +38,9 @@ from rockarch.motion.velocity_pulse import baker_pulse, check_method
 
 #: File suffixes read from a folder as two-column records (``.AT2`` is always read).
 TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
+#: Suffix of ESM / ITACA ASCII files, read from a folder too (any file whose first line is
+#: ``EVENT_NAME: ...`` is read as ESM, whatever its suffix).
+ESM_SUFFIXES = (".asc",)
 #: Name of the NGA-West2 metadata file in a downloaded folder.
 SEARCH_RESULTS = "_SearchResults.csv"
 
@@ -169,7 +172,7 @@ def _is_record_file(p: Path) -> bool:
     name = p.name.lower()
     if name.startswith(("_", ".")) or "searchresults" in name or name.startswith("readme"):
         return False
-    return p.suffix.lower() == ".at2" or p.suffix.lower() in TWO_COLUMN_SUFFIXES
+    return p.suffix.lower() in (".at2", *TWO_COLUMN_SUFFIXES, *ESM_SUFFIXES)
 
 
 def _bundled_hint() -> str:
@@ -185,8 +188,9 @@ def _bundled_hint() -> str:
 def record_files(sources) -> tuple[list[Path], list[Path]]:
     """Expand files and folders into record files and the metadata csv files found.
 
-    A folder contributes its ``.AT2`` files and its two-column files (suffixes
-    :data:`TWO_COLUMN_SUFFIXES`, not starting with ``_``), sorted by name, and its
+    A folder contributes its ``.AT2`` files, its ESM/ITACA ``.ASC`` files and its
+    two-column files (suffixes :data:`TWO_COLUMN_SUFFIXES`), those not starting with ``_``,
+    sorted by name, and its
     ``_SearchResults.csv`` if present. Files given explicitly are taken as they are (a file
     named ``*SearchResults*.csv`` is taken as metadata).
     """
@@ -344,9 +348,27 @@ def _match(name: str, rows: list[dict]) -> tuple[dict | None, str | None]:
     return row, None
 
 
+def _esm_number(text: str | None) -> float | None:
+    try:
+        v = float(text) if text else None
+    except ValueError:
+        return None
+    return v if v is not None and math.isfinite(v) else None
+
+
 def _header_fields(motion: GroundMotion) -> dict:
     """Event, year, station, component from an NGA ``.AT2`` title line
-    ``EVENT, M/D/YYYY, STATION, COMPONENT``."""
+    ``EVENT, M/D/YYYY, STATION, COMPONENT``, or from an ESM header (EVENT_NAME,
+    EVENT_DATE_YYYYMMDD, STATION_NAME or STATION_CODE, STREAM, MAGNITUDE_W, VS30_M/S)."""
+    if motion.meta.get("format") == "ESM":
+        h = motion.meta.get("header", {})
+        date = h.get("EVENT_DATE_YYYYMMDD", "")
+        return {"event": h.get("EVENT_NAME") or None,
+                "year": int(date[:4]) if date[:4].isdigit() else None,
+                "station": h.get("STATION_NAME") or h.get("STATION_CODE") or None,
+                "component": h.get("STREAM") or None,
+                "magnitude": _esm_number(h.get("MAGNITUDE_W")),
+                "vs30": _esm_number(h.get("VS30_M/S"))}
     title = motion.meta.get("title") if motion.meta.get("format") == "AT2" else None
     if not title:
         return {}
@@ -363,8 +385,14 @@ def _header_fields(motion: GroundMotion) -> dict:
 PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 
-#: Component names (AT2 header, lower case) of vertical records.
+#: Component names (AT2 header, lower case) of vertical records; a SEED channel code
+#: (three letters, ESM's STREAM such as HNZ) is vertical when it ends in Z.
 VERTICAL = ("up", "dwn", "dn", "down", "v", "ver", "vert", "vertical", "z")
+
+
+def _is_vertical(component) -> bool:
+    c = str(component or "").strip().lower()
+    return c in VERTICAL or (len(c) == 3 and c.isalpha() and c[2] == "z")
 
 
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
@@ -433,8 +461,7 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                 raise ValueError(f"{f.name}: not listed in {metas[0].name} (no RSN match), so "
                                  "its scale factor is unknown")
             notes.append(f"{f.name}: not listed in {metas[0].name}")
-        if not vertical and (comp == "V" or str(fields.get("component", "")).strip().lower()
-                             in VERTICAL):
+        if not vertical and (comp == "V" or _is_vertical(fields.get("component"))):
             notes.append(f"{f.name}: vertical component left out (--vertical keeps it)")
             continue
         m = _RSN_NAME.match(f.name)
