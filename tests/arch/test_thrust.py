@@ -105,6 +105,18 @@ def test_too_thin_arch_reports_its_minimum_thickness():
         limit_analysis(circular(10.0, 5.0, 0.5))  # t_min = 0.1075 R = 0.537 m
 
 
+def test_hinges_alternate_faces_and_a_too_thick_ring_is_refused():
+    """A four-hinge mechanism opens on alternate faces (e, i, e, i); a semicircle of thickness
+    0.5 x span (intrados radius 2.5 m for a 10 m axis span) grazes the extrados at two
+    neighbouring joints instead and is refused with one line, not given a mechanism."""
+    for d in (0.6, 2.0, 4.0):
+        sides = [h.side for h in limit_analysis(circular(10.0, 5.0, d)).hinges]
+        assert all(a != b for a, b in zip(sides[:-1], sides[1:], strict=True)), (d, sides)
+    with pytest.raises(ValueError, match=r"no four-hinge mechanism: .* e, i, e, e .* too "
+                                         r"thick"):
+        limit_analysis(circular(10.0, 5.0, 5.0))
+
+
 def test_minimum_thickness_at_given_lambda_is_the_lp_inverse():
     a = catenary(10, 3, 0.3)
     d = minimum_thickness(a, 0.1)
