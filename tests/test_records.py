@@ -234,3 +234,23 @@ def test_esm_bad_files_give_one_clear_message(tmp_path, kwargs, msg):
     path.write_text(_esm_text(np.array([0.0, 1.0, -2.0, 0.5, 0.0]), **kwargs))
     with pytest.raises(ValueError, match=re.escape(msg)):
         read_record(path)
+
+
+def test_site_oas_says_which_records_it_leaves_out(tmp_path):
+    """site-oas reads a folder as every --records does and says so when it leaves a
+    vertical stream out (it used to drop the suite's notes silently)."""
+    from typer.testing import CliRunner
+
+    from rockarch.cli import app
+
+    ref = el_centro()
+    text = _esm_text(ref.a[:500] * 100.0, dt=ref.t[1] - ref.t[0])
+    (tmp_path / "recs").mkdir()
+    (tmp_path / "recs" / "h.ASC").write_text(text)
+    (tmp_path / "recs" / "z.ASC").write_text(text.replace("STREAM: HNE", "STREAM: HNZ"))
+    res = CliRunner().invoke(app, ["site-oas", "--records", str(tmp_path / "recs"),
+                                   "--p-steps", "2", "--ratio-steps", "2", "--t-free", "1",
+                                   "--tol", "0", "--no-store", "--out", str(tmp_path / "s.nc")])
+    assert res.exit_code == 0, res.output
+    assert "warning: z.ASC: vertical component left out" in res.stderr
+    assert "site OAS of 1 record(s)" in res.stdout

@@ -86,7 +86,8 @@ def site_oas(
         opts["alpha"] = site_mod.ALPHA
     sysobj = system_of(opts)
     check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
-    motions, hashes = site_mod.load_records(paths, units)
+    motions, hashes = site_mod.load_records(paths, units,
+                                            log=lambda note: echo_err(f"warning: {note}"))
     ps = p_grid(None, p_min, p_max, p_steps)
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for a site OAS")

@@ -47,14 +47,19 @@ def record_paths(paths) -> list[Path]:
     return record_files(paths)[0]
 
 
-def load_records(paths, units: str | None = None) -> tuple[list[GroundMotion], list[str]]:
+def load_records(paths, units: str | None = None, log: Callable[[str], None] | None = None
+                 ) -> tuple[list[GroundMotion], list[str]]:
     """Read the records as a suite (:func:`rockarch.motion.suite.read_suite`: the same folders and
     vertical components left out as every ``--records``) and their file hashes; reject
     implausible PGAs (wrong units) and a record given twice (the same samples under two
-    names: it would count twice in the percentile)."""
+    names: it would count twice in the percentile). ``log`` receives the suite's notes (a
+    record left out, ...)."""
 
     motions, hashes, seen = [], [], {}
-    for rec in read_suite(paths, units=units):
+    suite = read_suite(paths, units=units)
+    for note in suite.notes if log is not None else ():
+        log(note)
+    for rec in suite:
         path, m = Path(rec.path), rec.motion
         first = seen.setdefault(m.fingerprint(), path)
         if first != path:
