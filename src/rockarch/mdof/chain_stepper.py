@@ -325,13 +325,16 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     tol_u = TOL_LCP * g * h
     tol_l = TOL_LCP * g * h / wmax
     e_scale = mtot * g * thick_min * scale
-    status, t_col, mx, impacts, open_max, n_rec, fails = 0, np.nan, 0.0, 0, 0, 0, 0
-    t, step, i_prev = 0.0, 0, 0.0
+    status, t_col, mx, fails = 0, np.nan, 0.0, 0
+    # counters passed to kernels start as int64, not literals: numba would otherwise
+    # compile those kernels once more for the literal while it types the loop
+    impacts, open_max, n_rec = np.int64(0), np.int64(0), np.int64(0)
+    t, step, i_prev = 0.0, np.int64(0), 0.0
     n_steps = int(math.ceil(t_end / h))
     # a step in which a corner is about to strike runs as REFINE substeps (Eq. 6.5)
     gprev = np.zeros((nj, 2))
-    ahead = False
-    nsub, sub, t_step, hc = 1, 0, 0.0, h
+    ahead = np.bool_(False)
+    nsub, sub, t_step, hc = np.int64(1), np.int64(0), 0.0, h
     v_imp = IMPACT_SPEED * g * h
     v_app = APPROACH_SPEED * g * h
     reach = IMPACT_HORIZON * h

@@ -146,7 +146,7 @@ def _separation(pa, pb, pptr, wx, wy, wn):
     """Greatest over the edges e of polygon pa of the least n_e·(v − p_e) over the corners v
     of polygon pb, and that edge."""
     best = -math.inf
-    be = -1
+    be = np.int64(-1)  # int64, not a literal: _manifold is compiled once
     for a0 in range(pptr[pa], pptr[pa + 1]):
         worst = math.inf
         for v in range(pptr[pb], pptr[pb + 1]):
@@ -205,7 +205,7 @@ def detect(pptr, pbody, pv, pn, x, y, cs, sn, pkeys, pptr_j, pjoint, jon, margin
             order[k + 1] = order[k]
             k -= 1
         order[k + 1] = p
-    n = 0
+    n = np.int64(0)
     for ii in range(npoly):
         p = order[ii]
         for jj in range(ii + 1, npoly):
