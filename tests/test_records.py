@@ -1,6 +1,7 @@
 """Record readers: PEER NGA .AT2 (new and old headers), ESM ASCII, two-column text, bad
 files."""
 
+import os
 import re
 
 import numpy as np
@@ -9,6 +10,7 @@ import pytest
 from rockarch.motion.records import (
     G_STANDARD,
     UnitsWarning,
+    bundled_record_path,
     el_centro,
     read_at2,
     read_record,
@@ -106,13 +108,31 @@ def test_missing_file_and_directory(tmp_path):
         ("0 1\n", "at least 2 samples, found 1"),
         ("0 1\n0.01 2\n0.02\n", "line 3 has 1 column"),
         ("0,00;0,5\n0,01;0,25\n", "line 1 has 4 column.*decimal commas"),
+        ("0.01\n-0.02\n0.03\n", "line 1 has 1 column.*no time step.*ESM .ASC"),
     ],
     ids=["third-column", "nan", "non-uniform", "backwards", "header-only", "one", "short",
-         "decimal-comma"],
+         "decimal-comma", "single-column"],
 )
 def test_two_column_errors_name_the_line(tmp_path, text, msg):
     with pytest.raises(ValueError, match=msg):
         read_two_column(_write(tmp_path, "r.txt", text))
+
+
+def test_a_peer_file_under_another_name_is_read_as_peer(tmp_path):
+    path = tmp_path / "elcentro.txt"
+    path.write_bytes(bundled_record_path(180).read_bytes())
+    got, ref = read_record(path), el_centro()
+    assert got.meta["format"] == "AT2"
+    np.testing.assert_array_equal(got.a, ref.a)
+
+
+def test_a_pipe_is_refused_with_one_line(tmp_path):
+    """A named pipe (or ``<(...)``) cannot be read twice as the readers do: one clear line,
+    not an io error from deep inside (nor a hang waiting for a writer)."""
+    fifo = tmp_path / "rec.txt"
+    os.mkfifo(fifo)
+    with pytest.raises(ValueError, match="not a regular file .a pipe.."):
+        read_record(fifo)
 
 
 def test_binary_and_unknown_units(tmp_path):

@@ -56,6 +56,9 @@ def _check_file(path: Path) -> None:
         raise ValueError(f"{path}: no such file")
     if path.is_dir():
         raise ValueError(f"{path}: is a directory, not a record file")
+    if not path.is_file():  # a pipe (<(...)) or a device: read more than once, it cannot be
+        raise ValueError(f"{path}: not a regular file (a pipe?): save the record to a file "
+                         "and give that")
     size = path.stat().st_size
     if size > 64 * limits.max_samples():  # a text sample takes at most ~40 characters
         raise limits.too_many(f"{path} ({size / 1e6:.0f} MB)", size / 40, "samples",
@@ -140,13 +143,24 @@ ESM_FIRST_KEY = "EVENT_NAME:"
 _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.()-]*)\s*:(.*)$")  # VS30_M/S, PGA_CM/S^2
 
 
+def _first_lines(path: Path, n: int) -> list[str]:
+    try:
+        lines = _lines(path)
+        return [line for _, line in zip(range(n), lines, strict=False)]
+    except OSError:
+        return []
+
+
+def is_at2(path: str | Path) -> bool:
+    """True if the file's 4th line is a PEER header's sampling line (NPTS and DT)."""
+    head = _first_lines(Path(path), 4)
+    return len(head) == 4 and bool(_NEW_HEADER.search(head[3]) or _OLD_HEADER.search(head[3]))
+
+
 def is_esm(path: str | Path) -> bool:
     """True if the file's first line is an ESM/ITACA header line (``EVENT_NAME: ...``)."""
-    try:
-        first = next(_lines(Path(path)), "")
-    except OSError:
-        return False
-    return first.lstrip().upper().startswith(ESM_FIRST_KEY)
+    head = _first_lines(Path(path), 1)
+    return bool(head) and head[0].lstrip().upper().startswith(ESM_FIRST_KEY)
 
 
 def read_esm(path: str | Path) -> GroundMotion:
@@ -237,8 +251,13 @@ def _two_numbers(path, k: int, s: str) -> tuple[float, float] | None:
     except ValueError:
         return None
     if len(vals) != 2:
-        hint = (": decimal commas? write numbers with a point (0.01, not 0,01)"
-                if len(vals) == 4 and "," in s and "." not in s else "")
+        if len(vals) == 4 and "," in s and "." not in s:
+            hint = ": decimal commas? write numbers with a point (0.01, not 0,01)"
+        elif len(vals) == 1:
+            hint = (": accelerations alone carry no time step; write 'time acceleration' "
+                    "lines, or a PEER .AT2 or ESM .ASC file, whose header gives it")
+        else:
+            hint = ""
         raise ValueError(f"{path}: line {k} has {len(vals)} column(s), expected 2 "
                          f"(time, acceleration){hint}")
     return vals[0], vals[1]
@@ -370,8 +389,9 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
 
 
 def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
-    """Read a record by its file type: ``.AT2`` as PEER, a file whose first line is
-    ``EVENT_NAME: ...`` as ESM/ITACA ASCII, anything else as two-column text.
+    """Read a record by its file type: ``.AT2`` (or a PEER header under any name) as PEER, a
+    file whose first line is ``EVENT_NAME: ...`` as ESM/ITACA ASCII, anything else as
+    two-column text.
 
     ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
     the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2 and ESM files
@@ -384,6 +404,9 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
                         f"{type(units).__name__}")
     path = Path(path)
     if path.suffix.lower() == ".at2":
+        return read_at2(path)
+    _check_file(path)
+    if is_at2(path):  # a PEER file under another name
         return read_at2(path)
     if is_esm(path):
         return read_esm(path)
