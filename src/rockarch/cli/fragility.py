@@ -59,8 +59,9 @@ IDA: Group = (
     ("p", float, typer.Option(None, "--p", help="Frequency parameter of the structure "
                               "[1/s] (default for mdof walls, columns, colonnades and "
                               "assembly files: their own, at the size given).")),
-    ("records", list[Path], typer.Option(None, "--records", help="Folder of .AT2 records or "
-                                         "record files; several may follow one --records.")),
+    ("records", list[Path], typer.Option(None, "--records", help="Folders of records "
+                                         "(.AT2, .ASC, two-column) or record files; several "
+                                         "may follow one --records.")),
     ("more", list[Path], typer.Argument(None, hidden=True)),
     ("units", str, typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2.")),
     ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
