@@ -115,6 +115,10 @@ def test_hinges_alternate_faces_and_a_too_thick_ring_is_refused():
     with pytest.raises(ValueError, match=r"no four-hinge mechanism: .* e, i, e, e .* too "
                                          r"thick"):
         limit_analysis(circular(10.0, 5.0, 5.0))
+    # 0.45 x span: e, i, i, e (it stopped later, in the kinematics: "no neutral position")
+    with pytest.raises(ValueError, match=r"no four-hinge mechanism: .* e, i, i, e .* too "
+                                         r"thick"):
+        limit_analysis(circular(10.0, 5.0, 4.5))
 
 
 def test_minimum_thickness_at_given_lambda_is_the_lp_inverse():

@@ -229,7 +229,8 @@ def neutral_position(mech: FourHinge) -> float:
     bad = np.flatnonzero(dv <= 0)
     if len(bad) == 0:
         raise ValueError("the four-hinge mechanism has no neutral position within its range "
-                         f"of motion (u <= {lim:.4g} rad)")
+                         f"of motion (u <= {lim:.4g} rad): its parts lock before they could "
+                         "overturn, as in a ring too thick for its span (give a thinner ring)")
     j = int(bad[0])
     if j == 0:
         lo = 0.0
