@@ -350,6 +350,22 @@ class ArchMechanism:
                 "c4_u": self.c4_u}
 
 
+def _check_alternating(res: ThrustResult) -> None:
+    """A four-bar mechanism opens its hinges on alternate faces (e, i, e, i or i, e, i, e).
+
+    A very thick ring's thrust line grazes one face at two neighbouring joints instead (a
+    semicircle of thickness 0.45 x span, for one): its ap,min is the LP's, but no four-bar
+    linkage, whose parts could move, passes through those hinges."""
+    sides = [h.side for h in res.hinges]
+    if any(a == b for a, b in zip(sides[:-1], sides[1:], strict=True)):
+        raise ValueError(
+            f"no four-hinge mechanism: ap,min = {res.ap_min:.4g} m/s², but there the thrust "
+            f"line touches the ring at {', '.join(s[0] for s in sides)} "
+            f"(e: extrados, i: intrados; joints {', '.join(str(h.joint) for h in res.hinges)}"
+            "), not on alternate faces: the ring is too thick for a four-hinge mechanism "
+            "(give a thinner ring)")
+
+
 def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: int = 1
             ) -> ArchMechanism:
     """Limit analysis + four-hinge mechanism + p, delta, ap_min and Eq. 14 constants.
@@ -375,6 +391,7 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
     **extrados**, c3p for the one on the intrados (this matches Table 1, where c3 < c3').
     """
     res = limit_analysis(arch, blocks, g=g, direction=direction)
+    _check_alternating(res)
     mech = mechanism_from_hinges(res.voussoirs, res.hinges, direction=direction, g=g)
     bv = float(potential_du(mech, 0.0)[0])
     bh = g * float(driving_moment(mech, 0.0)[0])  # moment of horizontal loads m*g

@@ -174,16 +174,6 @@ def _hinges_from(v: Voussoirs, ecc: np.ndarray, res) -> tuple[Hinge, ...]:
         p = v.intrados[i] if intr else v.extrados[i]
         out.append(Hinge(joint=i, x=float(p[0]), y=float(p[1]),
                          side="intrados" if intr else "extrados"))
-    sides = [h.side for h in out]
-    if any(a == b for a, b in zip(sides[:-1], sides[1:], strict=True)):
-        # a four-bar mechanism opens its hinges on alternate faces; a very thick ring's
-        # thrust line grazes one face at two neighbouring joints instead (a semicircle of
-        # thickness 0.45 x span, for one): no four-bar linkage, its parts cannot move
-        raise ValueError(
-            "no four-hinge mechanism: at ap,min the thrust line touches the ring at "
-            f"{', '.join(s[0] for s in sides)} (e: extrados, i: intrados; joints "
-            f"{', '.join(str(h.joint) for h in out)}), not on alternate faces: the ring is "
-            "too thick for a four-hinge mechanism (give a thinner ring)")
     return tuple(out)
 
 
