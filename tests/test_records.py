@@ -245,7 +245,8 @@ def test_esm_units_metadata_and_folder(tmp_path):
     ({"ndata": 9}, "header says NDATA=9 but the file holds 5 values"),
     ({"drop": ("SAMPLING_INTERVAL_S",)}, "needs the header line SAMPLING_INTERVAL_S"),
     ({"drop": ("UNITS",)}, "needs the header line UNITS"),
-    ({"data_type": "VELOCITY"}, "not an acceleration record (DATA_TYPE: VELOCITY)"),
+    ({"data_type": "VELOCITY"}, "not an acceleration time history (DATA_TYPE: VELOCITY)"),
+    ({"data_type": "ACCELERATION RESPONSE SPECTRUM"}, "not an acceleration time history"),
     ({"units": "cm/s"}, "unknown acceleration unit 'cm/s'"),
     ({"dt": 0.0}, "SAMPLING_INTERVAL_S must be > 0"),
 ])

@@ -190,8 +190,8 @@ def read_esm(path: str | Path) -> GroundMotion:
             raise ValueError(f"{path}: an ESM ASCII file needs the header line {key}: ... "
                              f"(found {n_head} header lines without it)")
     kind = header.get("DATA_TYPE", "ACCELERATION").upper()
-    if "ACCELERATION" not in kind:
-        raise ValueError(f"{path}: not an acceleration record (DATA_TYPE: {kind})")
+    if "ACCELERATION" not in kind or "SPECTRUM" in kind:  # ESM also serves spectra (.SA.ASC)
+        raise ValueError(f"{path}: not an acceleration time history (DATA_TYPE: {kind})")
     try:
         npts = int(header["NDATA"])
         dt = float(header["SAMPLING_INTERVAL_S"])
