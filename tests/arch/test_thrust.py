@@ -120,6 +120,10 @@ def test_hinges_alternate_faces_and_a_too_thick_ring_is_refused():
         with pytest.raises(ValueError, match=rf"no four-hinge mechanism: ap,min = .* "
                                              rf"{sides} .* too thick"):
             analyse(circular(10.0, 5.0, d))
+    # a catenary of thickness 0.3 x span: a thrust line with 3 touching points here (the
+    # count at a degenerate LP vertex may differ by machine: either refusal names the cause)
+    with pytest.raises(ValueError, match="too thick for"):
+        analyse(catenary(10.0, 3.0, 3.0))
 
 
 def test_minimum_thickness_at_given_lambda_is_the_lp_inverse():

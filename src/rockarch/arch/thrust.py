@@ -166,8 +166,10 @@ def _hinges_from(v: Voussoirs, ecc: np.ndarray, res) -> tuple[Hinge, ...]:
         cand = np.array([g[int(np.argmax(np.abs(ratio[g])))] for g in groups], dtype=int)
         side_of = np.where(ratio < 0, 0, 1)
     if len(cand) != 4:
-        raise ValueError(f"the collapse mechanism has {len(cand)} hinges instead of 4 "
-                         "(degenerate arch: try another number of voussoirs)")
+        raise ValueError(f"the collapse mechanism has {len(cand)} hinges instead of 4: a "
+                         "degenerate thrust line (a ring too thick for its span: give a "
+                         "thinner one; or, with --blocks, this number of voussoirs: try "
+                         "another)")
     out = []
     for i in sorted(int(k) for k in cand):
         intr = side_of[i] == 0
