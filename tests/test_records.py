@@ -235,6 +235,11 @@ def test_esm_units_metadata_and_folder(tmp_path):
     suite = read_suite(tmp_path)
     assert [r.name for r in suite.records] == ["a.ASC", "b.asc"]
     assert "c.ASC: vertical component left out" in suite.notes[0]
+    # ESM writes None where a value is unknown (EVENT_NAME: None in real files)
+    (tmp_path / "d.ASC").write_text(_esm_text(vals).replace("EVENT_NAME: CENTRAL_ITALY",
+                                                             "EVENT_NAME: None"))
+    d = read_record(tmp_path / "d.ASC")
+    assert d.name == "d.ASC (AMT HNE)" and "EVENT_NAME" in d.meta["header"]
     for r in suite.records:  # the file's 7 significant digits: 5e-7 relative
         np.testing.assert_allclose(r.motion.a, vals / 100.0, rtol=5e-7)
         assert (r.event, r.year, r.station, r.component, r.magnitude) == (

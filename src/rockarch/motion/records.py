@@ -183,7 +183,8 @@ def read_esm(path: str | Path) -> GroundMotion:
         m = _ESM_KEY.match(line.strip().removeprefix("\ufeff"))
         if m is None:
             break
-        header[m.group(1)] = m.group(2).strip()
+        value = m.group(2).strip()
+        header[m.group(1)] = "" if value == "None" else value  # ESM writes None for unknown
         n_head += 1
     for key in ("NDATA", "SAMPLING_INTERVAL_S", "UNITS"):
         if key not in header:
