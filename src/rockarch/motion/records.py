@@ -9,6 +9,8 @@ scales every record to a target PGA, this constant never changes an OAS.
 
 from __future__ import annotations
 
+import contextlib
+import itertools
 import math
 import os
 import re
@@ -144,9 +146,10 @@ _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.()-]*)\s*:(.*)$")  # VS30_M/S, PGA_CM/
 
 
 def _first_lines(path: Path, n: int) -> list[str]:
+    """The file's first ``n`` lines (fewer if it is shorter; none if it cannot be read)."""
     try:
-        lines = _lines(path)
-        return [line for _, line in zip(range(n), lines, strict=False)]
+        with contextlib.closing(_lines(path)) as lines:
+            return list(itertools.islice(lines, n))
     except OSError:
         return []
 
@@ -172,7 +175,6 @@ def read_esm(path: str | Path) -> GroundMotion:
     ``STREAM`` for the record's name. One sample a line follows.
     """
     path = Path(path)
-    _check_file(path)
     text = _read_text(path)
     if "\x00" in text[:8192]:
         raise ValueError(f"{path}: a binary file, not an ESM ASCII record")

@@ -190,9 +190,8 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
 
     A folder contributes its ``.AT2`` files, its ESM/ITACA ``.ASC`` files and its
     two-column files (suffixes :data:`TWO_COLUMN_SUFFIXES`), those not starting with ``_``,
-    sorted by name, and its
-    ``_SearchResults.csv`` if present. Files given explicitly are taken as they are (a file
-    named ``*SearchResults*.csv`` is taken as metadata).
+    sorted by name, and its ``_SearchResults.csv`` if present. Files given explicitly are
+    taken as they are (a file named ``*SearchResults*.csv`` is taken as metadata).
     """
     files: list[Path] = []
     metas: list[Path] = []
@@ -349,11 +348,12 @@ def _match(name: str, rows: list[dict]) -> tuple[dict | None, str | None]:
 
 
 def _esm_number(text: str | None) -> float | None:
+    """A finite number of an ESM header value; None for an empty or unknown one."""
     try:
-        v = float(text) if text else None
-    except ValueError:
+        v = float(text)
+    except (TypeError, ValueError):
         return None
-    return v if v is not None and math.isfinite(v) else None
+    return v if math.isfinite(v) else None
 
 
 def _header_fields(motion: GroundMotion) -> dict:

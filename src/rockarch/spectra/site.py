@@ -57,8 +57,9 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
 
     motions, hashes, seen = [], [], {}
     suite = read_suite(paths, units=units)
-    for note in suite.notes if log is not None else ():
-        log(note)
+    if log is not None:
+        for note in suite.notes:
+            log(note)
     for rec in suite:
         path, m = Path(rec.path), rec.motion
         first = seen.setdefault(m.fingerprint(), path)
