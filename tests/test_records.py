@@ -281,3 +281,83 @@ def test_site_oas_says_which_records_it_leaves_out(tmp_path):
     assert res.exit_code == 0, res.output
     assert "warning: z.ASC: vertical component left out" in res.stderr
     assert "site OAS of 1 record(s)" in res.stdout
+
+
+# --------------------------------------------------------------------------- K-NET / KiK-net
+
+#: K-NET's recorder: 1 count = 2000/8388608 gal (the 24-bit loggers' Scale Factor).
+KNET_SCALE = (2000.0, 8388608.0)
+
+
+def _knet_text(gal, offset=-18000, fs=100, direction="E-W", duration=None, peak=None,
+               drop=()):
+    """A K-NET ASCII file as NIED writes one: 17 header lines (keys padded to column 18),
+    then integer counts with the recorder's offset, 8 a line. ``Max. Acc.`` is the peak
+    after the mean of the counts is removed, as NIED defines it."""
+    num, den = KNET_SCALE
+    counts = np.round(np.asarray(gal) * den / num).astype(int) + offset
+    acc = counts * num / den
+    keys = {
+        "Origin Time": "2011/03/11 14:46:00", "Lat.": "38.103", "Long.": "142.860",
+        "Depth. (km)": "24", "Mag.": "9.0", "Station Code": "MYG004",
+        "Station Lat.": "38.7312", "Station Long.": "141.0214", "Station Height(m)": "230",
+        "Record Time": "2011/03/11 14:46:59", "Sampling Freq(Hz)": f"{fs}Hz",
+        "Duration Time(s)": str(duration if duration is not None else len(gal) // 100),
+        "Dir.": direction, "Scale Factor": f"{num:.0f}(gal)/{den:.0f}",
+        "Max. Acc. (gal)": f"{np.abs(acc - acc.mean()).max() if peak is None else peak:.3f}",
+        "Last Correction": "2011/03/11 14:46:44", "Memo.": "",
+    }
+    lines = [f"{k:<18}{v}" for k, v in keys.items() if k not in drop]
+    lines += ["".join(f"{c:>9d}" for c in counts[i:i + 8]) for i in range(0, len(counts), 8)]
+    return "\n".join(lines) + "\n"
+
+
+def test_knet_file_reads_as_the_same_record(tmp_path):
+    """El Centro written as K-NET counts with a large recorder offset reads back as the
+    bundled record less its mean: within one count (2.4e-4 gal), the offset removed as NIED
+    removes it (the mean of the whole record)."""
+    ref = el_centro()
+    path = tmp_path / "MYG0041103111446.EW"
+    path.write_text(_knet_text(ref.a * 100.0, duration=54))
+    got = read_record(path, units="g")  # K-NET states its scale; --units is for text
+    assert got.meta["format"] == "K-NET" and got.meta["npts"] == ref.t.size
+    assert got.name == f"{path.name} (MYG004 E-W 2011/03/11 14:46:00)"
+    np.testing.assert_allclose(got.t, ref.t, rtol=1e-12, atol=1e-12)
+    one_count = KNET_SCALE[0] / KNET_SCALE[1] * 0.01  # m/s²
+    assert np.abs(got.a - (ref.a - ref.a.mean())).max() <= one_count
+    other = tmp_path / "knet.txt"  # any suffix: the first header line decides
+    other.write_text(path.read_text())
+    assert read_record(other).meta["format"] == "K-NET"
+
+
+def test_knet_folder_metadata_vertical_and_borehole(tmp_path):
+    """A folder's K-NET and KiK-net files are read with their header's metadata; the U-D
+    component and KiK-net's borehole sensor (Dir. 1-3) are left out with a note."""
+    from rockarch.motion.suite import read_suite
+
+    gal = 150.0 * np.sin(np.linspace(0.0, 20.0, 1000))  # 10 s at 100 Hz, 0.15 g
+    (tmp_path / "MYG0041103111446.NS").write_text(_knet_text(gal, direction="N-S"))
+    (tmp_path / "MYG0041103111446.UD").write_text(_knet_text(gal, direction="U-D"))
+    (tmp_path / "IWTH251103111446.EW1").write_text(_knet_text(gal, direction="2"))
+    (tmp_path / "IWTH251103111446.EW2").write_text(_knet_text(gal, direction="5"))
+    suite = read_suite(tmp_path)
+    assert [r.name for r in suite.records] == ["IWTH251103111446.EW2", "MYG0041103111446.NS"]
+    assert "vertical component left out" in " ".join(suite.notes)
+    assert "IWTH251103111446.EW1: KiK-net borehole sensor left out" in " ".join(suite.notes)
+    r = suite.records[1]
+    assert (r.event, r.year, r.station, r.component, r.magnitude) == (
+        "2011/03/11 14:46:00", 2011, "MYG004", "N-S", 9.0)
+    assert suite.records[0].component == "E-W"  # KiK-net's Dir. 5: the surface E-W sensor
+
+
+@pytest.mark.parametrize("kwargs, msg", [
+    ({"duration": 30}, "last 10.00 s, the header's Duration Time(s) is 30 s (truncated"),
+    ({"peak": 99.0}, "the header's Max. Acc. is 99 gal (edited or corrupted"),
+    ({"drop": ("Scale Factor",)}, "needs the header line 'Scale Factor'"),
+    ({"fs": "fast"}, "Sampling Freq(Hz) must be a positive number"),
+])
+def test_knet_bad_files_give_one_clear_message(tmp_path, kwargs, msg):
+    path = tmp_path / "r.NS"
+    path.write_text(_knet_text(150.0 * np.sin(np.linspace(0.0, 20.0, 1000)), **kwargs))
+    with pytest.raises(ValueError, match=re.escape(msg)):
+        read_record(path)

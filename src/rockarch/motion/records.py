@@ -1,5 +1,5 @@
-"""Readers for strong-motion records: PEER NGA ``.AT2`` files, ESM/ITACA ASCII files and
-two-column text.
+"""Readers for strong-motion records: PEER NGA ``.AT2`` files, ESM/ITACA ASCII files, K-NET /
+KiK-net ASCII files and two-column text.
 
 Records are returned as :class:`rockarch.motion.signals.GroundMotion` in m/s² with uniform
 time steps.
@@ -218,6 +218,111 @@ def read_esm(path: str | Path) -> GroundMotion:
                         f"{path.name} ({title})" if title else path.name, meta)
 
 
+#: First header key of a K-NET / KiK-net ASCII file (NIED, Japan): 17 header lines
+#: ``Key<padding to column 18>value``, then integer counts, 8 a line.
+KNET_FIRST_KEY = "Origin Time"
+KNET_HEADER_LINES = 17
+#: KiK-net's ``Dir.`` codes: 1-3 the borehole sensor (N-S, E-W, U-D), 4-6 the surface one.
+KIKNET_DIRECTIONS = {"1": "N-S", "2": "E-W", "3": "U-D", "4": "N-S", "5": "E-W", "6": "U-D"}
+
+
+def is_knet(path: str | Path) -> bool:
+    """True if the file's first line is a K-NET / KiK-net header line (``Origin Time ...``)."""
+    head = _first_lines(Path(path), 1)
+    return bool(head) and head[0].lstrip().startswith(KNET_FIRST_KEY)
+
+
+def _knet_key(key: str) -> str:
+    """A K-NET header key without dots and blanks, lower case (``Max. Acc. (gal)`` and
+    ``Max Acc. (gal)`` both ``maxacc(gal)``)."""
+    return re.sub(r"[.\s]", "", key).lower()
+
+
+def read_knet(path: str | Path) -> GroundMotion:
+    """Read a K-NET or KiK-net ASCII acceleration file (NIED, Japan: ``.NS``, ``.EW``,
+    ``.UD``; KiK-net ``.NS1`` ... ``.UD2``).
+
+    docs/sites.md, "What a folder holds". The 17 header lines give ``Sampling Freq(Hz)``,
+    ``Scale Factor`` (``A(gal)/B``: one count is A/B gal), ``Duration Time(s)`` and
+    ``Max. Acc. (gal)``; integer counts follow. The counts carry the recorder's offset:
+    the acceleration is counts × A/B less the record's mean, as NIED defines it (its
+    ``Max. Acc.`` is the peak after that mean is removed). The reader checks the file
+    against its header: its length against ``Duration Time(s)`` (within a second) and its
+    peak against ``Max. Acc.`` (within two counts and the header's rounding, or 1 %).
+    """
+    path = Path(path)
+    text = _read_text(path)
+    if "\x00" in text[:8192]:
+        raise ValueError(f"{path}: a binary file, not a K-NET ASCII record")
+    lines = text.splitlines()
+    if len(lines) < KNET_HEADER_LINES:
+        raise ValueError(f"{path}: a K-NET file has {KNET_HEADER_LINES} header lines, found "
+                         f"{len(lines)} lines")
+    header = {_knet_key(line[:18]): line[18:].strip() for line in lines[:KNET_HEADER_LINES]}
+    need = {"samplingfreq(hz)": "Sampling Freq(Hz)", "scalefactor": "Scale Factor",
+            "durationtime(s)": "Duration Time(s)", "maxacc(gal)": "Max. Acc. (gal)"}
+    missing = [name for key, name in need.items() if key not in header]
+    if missing:
+        raise ValueError(f"{path}: a K-NET file needs the header line {missing[0]!r} in its "
+                         f"first {KNET_HEADER_LINES} lines")
+    freq = re.fullmatch(r"([0-9]*\.?[0-9]+)\s*(?:Hz)?", header["samplingfreq(hz)"],
+                        re.IGNORECASE)
+    fs = float(freq.group(1)) if freq else 0.0
+    if not fs > 0:
+        raise ValueError(f"{path}: Sampling Freq(Hz) must be a positive number such as "
+                         f"'100Hz', found {header['samplingfreq(hz)']!r}")
+    scale = re.fullmatch(r"([0-9]*\.?[0-9]+)\s*\(gal\)\s*/\s*([0-9]*\.?[0-9]+)",
+                         header["scalefactor"], re.IGNORECASE)
+    num, den = (float(scale.group(1)), float(scale.group(2))) if scale else (0.0, 0.0)
+    if not (num > 0 and den > 0):
+        raise ValueError(f"{path}: Scale Factor must read like '3920(gal)/6182761', found "
+                         f"{header['scalefactor']!r}")
+    try:
+        duration = float(header["durationtime(s)"])
+        peak_gal = float(header["maxacc(gal)"])
+    except ValueError:
+        raise ValueError(f"{path}: Duration Time(s) and Max. Acc. (gal) must be numbers, found "
+                         f"{header['durationtime(s)']!r} and {header['maxacc(gal)']!r}") from None
+    dt = 1.0 / fs
+    _check_dt(path, dt)
+    body = "\n".join(lines[KNET_HEADER_LINES:])
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
+            counts = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
+    except (ValueError, DeprecationWarning):
+        raise ValueError(f"{path}: the counts after the header (line {KNET_HEADER_LINES + 1} "
+                         "on) are not all numbers") from None
+    if counts.size > limits.max_samples():
+        raise limits.too_many(str(path), counts.size, "samples", limits.max_samples(),
+                              "shorten or decimate the record")
+    _check_samples(path, counts)
+    if abs(counts.size / fs - duration) > 1.0:  # NIED rounds the duration to the second
+        raise ValueError(f"{path}: {counts.size} samples at {fs:g} Hz last "
+                         f"{counts.size / fs:.2f} s, the header's Duration Time(s) is "
+                         f"{duration:g} s (truncated or corrupted file)")
+    gal = counts * (num / den)
+    gal -= gal.mean()
+    peak = float(np.abs(gal).max())
+    # the header's peak is printed to 0.001 gal; the mean of a cut or edited file differs
+    if abs(peak - peak_gal) > max(0.01 * peak_gal, 2.0 * num / den + 0.0005):
+        raise ValueError(f"{path}: its peak after the mean is removed is {peak:.3f} gal, the "
+                         f"header's Max. Acc. is {peak_gal:g} gal (edited or corrupted file?)")
+    values = gal * 0.01
+    check_acceleration(path, values)
+    direction = header.get("dir", "")
+    sensor = None
+    if direction in KIKNET_DIRECTIONS:
+        sensor = "borehole" if direction in "123" else "surface"
+        direction = KIKNET_DIRECTIONS[direction]
+    title = " ".join(x for x in (header.get("stationcode", ""), direction,
+                                 header.get("origintime", "")) if x)
+    meta = {"source": str(path), "title": title, "dt": dt, "npts": int(counts.size),
+            "format": "K-NET", "units_in_file": "counts", "scale_gal": num / den,
+            "component": direction, "sensor": sensor, "header": header}
+    return GroundMotion(np.arange(counts.size) * dt, values, f"{path.name} ({title})", meta)
+
+
 #: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
 #: acceleration record in the units given, and its integrals (PGV, Arias) would overflow.
 MAX_ACCELERATION = 1e5 * G_STANDARD
@@ -393,12 +498,12 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
 
 def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     """Read a record by its file type: ``.AT2`` (or a PEER header under any name) as PEER, a
-    file whose first line is ``EVENT_NAME: ...`` as ESM/ITACA ASCII, anything else as
-    two-column text.
+    file whose first line is ``EVENT_NAME: ...`` as ESM/ITACA ASCII, one whose first line
+    is ``Origin Time ...`` as K-NET / KiK-net ASCII, anything else as two-column text.
 
     ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
-    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2 and ESM files
-    state their own.
+    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2, ESM and
+    K-NET files state their own.
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a file path (str or Path), got {type(path).__name__}")
@@ -413,6 +518,8 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
         return read_at2(path)
     if is_esm(path):
         return read_esm(path)
+    if is_knet(path):
+        return read_knet(path)
     motion = read_two_column(path, units=units or "m/s2")
     if units is None and motion.pga <= G_LIKE_PEAK:
         warnings.warn(UnitsWarning(

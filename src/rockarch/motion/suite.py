@@ -41,6 +41,9 @@ TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
 #: Suffix of ESM / ITACA ASCII files, read from a folder too (any file whose first line is
 #: ``EVENT_NAME: ...`` is read as ESM, whatever its suffix).
 ESM_SUFFIXES = (".asc",)
+#: Suffixes of K-NET (.NS .EW .UD) and KiK-net (1: borehole, 2: surface) ASCII files (any
+#: file whose first line is ``Origin Time ...`` is read as K-NET, whatever its suffix).
+KNET_SUFFIXES = tuple(f".{c}{n}" for c in ("ns", "ew", "ud") for n in ("", "1", "2"))
 #: Name of the NGA-West2 metadata file in a downloaded folder.
 SEARCH_RESULTS = "_SearchResults.csv"
 
@@ -172,7 +175,7 @@ def _is_record_file(p: Path) -> bool:
     name = p.name.lower()
     if name.startswith(("_", ".")) or "searchresults" in name or name.startswith("readme"):
         return False
-    return p.suffix.lower() in (".at2", *TWO_COLUMN_SUFFIXES, *ESM_SUFFIXES)
+    return p.suffix.lower() in (".at2", *TWO_COLUMN_SUFFIXES, *ESM_SUFFIXES, *KNET_SUFFIXES)
 
 
 def _bundled_hint() -> str:
@@ -188,10 +191,11 @@ def _bundled_hint() -> str:
 def record_files(sources) -> tuple[list[Path], list[Path]]:
     """Expand files and folders into record files and the metadata csv files found.
 
-    A folder contributes its ``.AT2`` files, its ESM/ITACA ``.ASC`` files and its
-    two-column files (suffixes :data:`TWO_COLUMN_SUFFIXES`), those not starting with ``_``,
-    sorted by name, and its ``_SearchResults.csv`` if present. Files given explicitly are
-    taken as they are (a file named ``*SearchResults*.csv`` is taken as metadata).
+    A folder contributes its ``.AT2`` files, its ESM/ITACA ``.ASC`` files, its K-NET /
+    KiK-net files (:data:`KNET_SUFFIXES`) and its two-column files (suffixes
+    :data:`TWO_COLUMN_SUFFIXES`), those not starting with ``_``, sorted by name, and its
+    ``_SearchResults.csv`` if present. Files given explicitly are taken as they are (a file
+    named ``*SearchResults*.csv`` is taken as metadata).
     """
     files: list[Path] = []
     metas: list[Path] = []
@@ -209,8 +213,8 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
             found = sorted((q for q in p.iterdir() if q.is_file() and _is_record_file(q)),
                            key=lambda q: q.name)
             if not found:
-                raise ValueError(f"{p}: folder holds no record (.AT2 or two-column "
-                                 f"{'/'.join(TWO_COLUMN_SUFFIXES)})")
+                raise ValueError(f"{p}: folder holds no record (.AT2, .ASC, K-NET .NS/.EW "
+                                 f"or two-column {'/'.join(TWO_COLUMN_SUFFIXES)})")
             files.extend(found)
             metas.extend(q for q in sorted(p.iterdir())
                          if q.is_file() and q.name.lower().endswith("searchresults.csv"))
@@ -359,7 +363,16 @@ def _esm_number(text: str | None) -> float | None:
 def _header_fields(motion: GroundMotion) -> dict:
     """Event, year, station, component from an NGA ``.AT2`` title line
     ``EVENT, M/D/YYYY, STATION, COMPONENT``, or from an ESM header (EVENT_NAME,
-    EVENT_DATE_YYYYMMDD, STATION_NAME or STATION_CODE, STREAM, MAGNITUDE_W, VS30_M/S)."""
+    EVENT_DATE_YYYYMMDD, STATION_NAME or STATION_CODE, STREAM, MAGNITUDE_W, VS30_M/S), or
+    from a K-NET header (the origin time names the event; Mag. is JMA's magnitude)."""
+    if motion.meta.get("format") == "K-NET":
+        h = motion.meta.get("header", {})
+        origin = h.get("origintime", "")
+        return {"event": origin or None,
+                "year": int(origin[:4]) if origin[:4].isdigit() else None,
+                "station": h.get("stationcode") or None,
+                "component": motion.meta.get("component") or None,
+                "magnitude": _esm_number(h.get("mag"))}
     if motion.meta.get("format") == "ESM":
         h = motion.meta.get("header", {})
         date = h.get("EVENT_DATE_YYYYMMDD", "")
@@ -385,9 +398,9 @@ def _header_fields(motion: GroundMotion) -> dict:
 PGA_RANGE = (1e-4 * G_STANDARD, 5.0 * G_STANDARD)
 
 
-#: Component names (AT2 header, lower case) of vertical records; a SEED channel code
-#: (three letters, ESM's STREAM such as HNZ) is vertical when it ends in Z.
-VERTICAL = ("up", "dwn", "dn", "down", "v", "ver", "vert", "vertical", "z")
+#: Component names (AT2 header, K-NET's U-D, lower case) of vertical records; a SEED
+#: channel code (three letters, ESM's STREAM such as HNZ) is vertical when it ends in Z.
+VERTICAL = ("up", "dwn", "dn", "down", "v", "ver", "vert", "vertical", "z", "u-d", "ud")
 
 
 def _is_vertical(component) -> bool:
@@ -402,9 +415,9 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     Parameters
     ----------
     sources : path or list of paths
-        Record files (``.AT2`` or two-column) and/or folders of them.
+        Record files (``.AT2``, ESM ``.ASC``, K-NET, two-column) and/or folders of them.
     units : str, optional
-        Units of two-column records (m/s2 by default; ``.AT2`` state their own).
+        Units of two-column records (m/s2 by default; the other formats state their own).
     apply_scale : bool
         Multiply each record by the scale factor of its csv row.
     search_results : path, optional
@@ -413,7 +426,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     vertical : bool
         Keep vertical components (csv component V, or an ``.AT2`` header component such as
         ``UP``); by default they are left out and listed in ``notes`` (rocking structures
-        are assessed under horizontal ground motion).
+        are assessed under horizontal ground motion). KiK-net borehole records (a motion
+        at depth) are left out and listed in ``notes`` too.
 
     Notes
     -----
@@ -464,6 +478,10 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         if not vertical and (comp == "V" or _is_vertical(fields.get("component"))):
             notes.append(f"{f.name}: vertical component left out (--vertical keeps it)")
             continue
+        if motion.meta.get("sensor") == "borehole":
+            notes.append(f"{f.name}: KiK-net borehole sensor left out (a motion at depth, not "
+                         "the ground surface's: its .NS2/.EW2 files are)")
+            continue
         m = _RSN_NAME.match(f.name)
         if "rsn" not in fields and m:
             fields["rsn"] = int(m.group(1))
@@ -478,6 +496,9 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                      f"peaks of at most {G_LIKE_PEAK:g}, plausible in g too ({g_like[0]}"
                      f"{', ...' if len(g_like) > 1 else ''}): give --units m/s2 or --units g")
     if not records:
+        if any("borehole" in n for n in notes):
+            raise ValueError("every record is a vertical component or a KiK-net borehole "
+                             "sensor's: give the surface sensor's .NS2/.EW2 files")
         raise ValueError("every record is a vertical component: give --vertical to use them")
     suite = Suite(tuple(records), csv=str(metas[0]) if metas else None, notes=tuple(notes))
     return suite.scaled() if apply_scale else suite
