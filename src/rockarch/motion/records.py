@@ -77,16 +77,21 @@ def _check_samples(path, acc: np.ndarray) -> None:
         raise ValueError(f"{path}: every sample is zero")
 
 
-def _samples(path, body: str, npts: int, key: str, factor: float, where: str) -> np.ndarray:
+def _samples(path, body: str, npts: int | None, key: str, factor: float,
+             where: str) -> np.ndarray:
     """The ``npts`` whitespace-separated values of ``body`` times ``factor`` [m/s²], checked
-    (``key``: the header's count, NPTS or NDATA; ``where``: the values' place, for errors)."""
+    (``key``: the header's count, NPTS or NDATA, or None where the header has none;
+    ``where``: the values' place, for errors)."""
     try:  # numpy's C parser: 8 bytes per value, no Python float objects
         with warnings.catch_warnings():
             warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
             values = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
     except (ValueError, DeprecationWarning):
         raise ValueError(f"{path}: the sample values{where} are not all numbers") from None
-    if values.size != npts:
+    if npts is None and values.size > limits.max_samples():
+        raise limits.too_many(str(path), values.size, "samples", limits.max_samples(),
+                              "shorten or decimate the record")
+    if npts is not None and values.size != npts:
         raise ValueError(f"{path}: header says {key}={npts} but the file holds {values.size} "
                          "values (truncated or corrupted file)")
     _check_samples(path, values)
@@ -285,23 +290,12 @@ def read_knet(path: str | Path) -> GroundMotion:
                          f"{header['durationtime(s)']!r} and {header['maxacc(gal)']!r}") from None
     dt = 1.0 / fs
     _check_dt(path, dt)
-    body = "\n".join(lines[KNET_HEADER_LINES:])
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
-            counts = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
-    except (ValueError, DeprecationWarning):
-        raise ValueError(f"{path}: the counts after the header (line {KNET_HEADER_LINES + 1} "
-                         "on) are not all numbers") from None
-    if counts.size > limits.max_samples():
-        raise limits.too_many(str(path), counts.size, "samples", limits.max_samples(),
-                              "shorten or decimate the record")
-    _check_samples(path, counts)
-    if abs(counts.size / fs - duration) > 1.0:  # NIED rounds the duration to the second
-        raise ValueError(f"{path}: {counts.size} samples at {fs:g} Hz last "
-                         f"{counts.size / fs:.2f} s, the header's Duration Time(s) is "
+    gal = _samples(path, "\n".join(lines[KNET_HEADER_LINES:]), None, "", num / den,
+                   f" after the header (line {KNET_HEADER_LINES + 1} on)")
+    if abs(gal.size / fs - duration) > 1.0:  # NIED rounds the duration to the second
+        raise ValueError(f"{path}: {gal.size} samples at {fs:g} Hz last "
+                         f"{gal.size / fs:.2f} s, the header's Duration Time(s) is "
                          f"{duration:g} s (truncated or corrupted file)")
-    gal = counts * (num / den)
     gal -= gal.mean()
     peak = float(np.abs(gal).max())
     # the header's peak is printed to 0.001 gal; the mean of a cut or edited file differs
@@ -309,7 +303,6 @@ def read_knet(path: str | Path) -> GroundMotion:
         raise ValueError(f"{path}: its peak after the mean is removed is {peak:.3f} gal, the "
                          f"header's Max. Acc. is {peak_gal:g} gal (edited or corrupted file?)")
     values = gal * 0.01
-    check_acceleration(path, values)
     direction = header.get("dir", "")
     sensor = None
     if direction in KIKNET_DIRECTIONS:
@@ -317,10 +310,10 @@ def read_knet(path: str | Path) -> GroundMotion:
         direction = KIKNET_DIRECTIONS[direction]
     title = " ".join(x for x in (header.get("stationcode", ""), direction,
                                  header.get("origintime", "")) if x)
-    meta = {"source": str(path), "title": title, "dt": dt, "npts": int(counts.size),
+    meta = {"source": str(path), "title": title, "dt": dt, "npts": int(gal.size),
             "format": "K-NET", "units_in_file": "counts", "scale_gal": num / den,
             "component": direction, "sensor": sensor, "header": header}
-    return GroundMotion(np.arange(counts.size) * dt, values, f"{path.name} ({title})", meta)
+    return GroundMotion(np.arange(gal.size) * dt, values, f"{path.name} ({title})", meta)
 
 
 #: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
