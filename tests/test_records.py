@@ -361,3 +361,14 @@ def test_knet_bad_files_give_one_clear_message(tmp_path, kwargs, msg):
     path.write_text(_knet_text(150.0 * np.sin(np.linspace(0.0, 20.0, 1000)), **kwargs))
     with pytest.raises(ValueError, match=re.escape(msg)):
         read_record(path)
+
+
+def test_esm_header_in_another_order_is_still_esm(tmp_path):
+    """A file of ESM header lines that does not open with EVENT_NAME (ITACA's older files,
+    files written by other tools) is read as ESM, not refused as a two-column file."""
+    text = _esm_text(np.array([0.0, 100.0, -200.0, 50.0, 0.0]))
+    lines = text.splitlines()
+    path = tmp_path / "r.txt"
+    path.write_text("\n".join(lines[1:64] + [lines[0]] + lines[64:]) + "\n")
+    m = read_record(path)
+    assert m.meta["format"] == "ESM" and m.pga == pytest.approx(2.0)

@@ -144,9 +144,10 @@ def read_at2(path: str | Path) -> GroundMotion:
     return GroundMotion(t, values, f"{path.name} ({title})", meta)
 
 
-#: First header key of an ESM (Engineering Strong-Motion database, ORFEUS) or ITACA ASCII
-#: file: ``KEY: value`` header lines, then one sample a line.
-ESM_FIRST_KEY = "EVENT_NAME:"
+#: Header keys every ESM (Engineering Strong-Motion database, ORFEUS) or ITACA ASCII file
+#: has: ``KEY: value`` header lines (``EVENT_NAME:`` first in ESM's files), then one
+#: sample a line.
+ESM_KEYS = ("NDATA", "SAMPLING_INTERVAL_S")
 _ESM_KEY = re.compile(r"^([A-Z][A-Z0-9_/^.()-]*)\s*:(.*)$")  # VS30_M/S, PGA_CM/S^2
 
 
@@ -166,9 +167,15 @@ def is_at2(path: str | Path) -> bool:
 
 
 def is_esm(path: str | Path) -> bool:
-    """True if the file's first line is an ESM/ITACA header line (``EVENT_NAME: ...``)."""
-    head = _first_lines(Path(path), 1)
-    return bool(head) and head[0].lstrip().upper().startswith(ESM_FIRST_KEY)
+    """True if the file opens with ESM/ITACA header lines (``KEY: value``): ``EVENT_NAME``
+    first, or one of :data:`ESM_KEYS` among them (:func:`read_esm` says which is missing)."""
+    keys = set()
+    for line in _first_lines(Path(path), 100):
+        m = _ESM_KEY.match(line.strip().removeprefix("\ufeff"))
+        if m is None:
+            break
+        keys.add(m.group(1))
+    return bool(keys) and ("EVENT_NAME" in keys or any(k in keys for k in ESM_KEYS))
 
 
 def read_esm(path: str | Path) -> GroundMotion:
@@ -491,7 +498,8 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
 
 def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     """Read a record by its file type: ``.AT2`` (or a PEER header under any name) as PEER, a
-    file whose first line is ``EVENT_NAME: ...`` as ESM/ITACA ASCII, one whose first line
+    file that opens with ``KEY: value`` lines giving NDATA and SAMPLING_INTERVAL_S as ESM/ITACA
+    ASCII, one whose first line
     is ``Origin Time ...`` as K-NET / KiK-net ASCII, anything else as two-column text.
 
     ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if

@@ -38,8 +38,9 @@ from rockarch.motion.velocity_pulse import baker_pulse, check_method
 
 #: File suffixes read from a folder as two-column records (``.AT2`` is always read).
 TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
-#: Suffix of ESM / ITACA ASCII files, read from a folder too (any file whose first line is
-#: ``EVENT_NAME: ...`` is read as ESM, whatever its suffix).
+#: Suffix of ESM / ITACA ASCII files, read from a folder too (any file that opens with
+#: ``KEY: value`` header lines, EVENT_NAME, NDATA or SAMPLING_INTERVAL_S among them, is read
+#: as ESM, whatever its suffix).
 ESM_SUFFIXES = (".asc",)
 #: Suffixes of K-NET (.NS .EW .UD) and KiK-net (1: borehole, 2: surface) ASCII files (any
 #: file whose first line is ``Origin Time ...`` is read as K-NET, whatever its suffix).
