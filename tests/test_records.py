@@ -263,6 +263,17 @@ def test_esm_bad_files_give_one_clear_message(tmp_path, kwargs, msg):
         read_record(path)
 
 
+def test_esm_header_in_another_order_is_still_esm(tmp_path):
+    """A file of ESM header lines that does not open with EVENT_NAME (ITACA's older files,
+    files written by other tools) is read as ESM, not refused as a two-column file."""
+    text = _esm_text(np.array([0.0, 100.0, -200.0, 50.0, 0.0]))
+    lines = text.splitlines()
+    path = tmp_path / "r.txt"
+    path.write_text("\n".join(lines[1:64] + [lines[0]] + lines[64:]) + "\n")
+    m = read_record(path)
+    assert m.meta["format"] == "ESM" and m.pga == pytest.approx(2.0)
+
+
 def test_site_oas_says_which_records_it_leaves_out(tmp_path):
     """site-oas reads a folder as every --records does and says so when it leaves a
     vertical stream out (it used to drop the suite's notes silently)."""
@@ -350,25 +361,88 @@ def test_knet_folder_metadata_vertical_and_borehole(tmp_path):
     assert suite.records[0].component == "E-W"  # KiK-net's Dir. 5: the surface E-W sensor
 
 
-@pytest.mark.parametrize("kwargs, msg", [
-    ({"duration": 30}, "last 10.00 s, the header's Duration Time(s) is 30 s (truncated"),
-    ({"peak": 99.0}, "the header's Max. Acc. is 99 gal (edited or corrupted"),
-    ({"drop": ("Scale Factor",)}, "needs the header line 'Scale Factor'"),
-    ({"fs": "fast"}, "Sampling Freq(Hz) must be a positive number"),
+# --------------------------------------------------------------------------- COSMOS
+
+
+def _cosmos_text(cm, dt=0.01, orientation=340, kind="acceleration", units="cm/sec2(04)",
+                 dt_ms=None, approx=None, peak=None, channels=1):
+    """A COSMOS v1.20 file as CESMD writes a corrected record (V2): 13 text lines, 100
+    integer and 100 real header values (orientation: integer 54; the sampling interval in
+    ms: real 62; the peak: real 64), comments, the data line and the values in (8F8.3):
+    fields of 8 characters that touch where a value fills its field (-275.123-12.000)."""
+    cm = np.round(np.asarray(cm, dtype=float), 3)
+    ints = np.full(100, -999)
+    ints[39], ints[53] = 1940, orientation
+    reals = np.full(100, -999.0)
+    reals[61] = dt * 1000.0 if dt_ms is None else dt_ms
+    reals[63] = cm[np.argmax(np.abs(cm))] if peak is None else peak
+    text = ["Corrected acceleration    (Format v01.20 with 13 text lines) Src: test",
+            "Record of Imperial Valley Earthquake of May 19, 1940",
+            "Hypocenter: 32.7330 -115.5000 H= 9km Mw=6.95",
+            "Origin: 05/19/1940, 04:36:40 UTC", "Statn No: 01-117  Code:CE-117  El Centro",
+            *[f"text line {i}" for i in range(6, 14)]]
+    lines = text + [" 100 Integer-header values follow on  10 lines, Format= (10I8)"]
+    lines += ["".join(f"{v:8d}" for v in ints[i:i + 10]) for i in range(0, 100, 10)]
+    lines += [" 100 Real-header values follow on  20 lines, Format= (5F15.6)"]
+    lines += ["".join(f"{v:15.6f}" for v in reals[i:i + 5]) for i in range(0, 100, 5)]
+    lines += ['  1 Comment line(s) follow, each starting with a "|":', "| a comment"]
+    lines += [f"{cm.size:8d} {kind} pts, approx {approx or round(cm.size * dt):4d} secs, "
+              f"units={units},Format=(8F8.3)"]
+    lines += ["".join(f"{v:8.3f}" for v in cm[i:i + 8]) for i in range(0, cm.size, 8)]
+    lines += ["/&  ----------  End of data for channel  1  ----------"]
+    return "\n".join(lines * channels) + "\n"
+
+
+def test_cosmos_file_reads_as_the_same_record(tmp_path):
+    """El Centro written as a COSMOS V2 file in cm/s² with fields that touch reads back as
+    the bundled record: the same step, the samples within the file's 3 decimals in cm/s²
+    (5e-6 m/s²), the metadata from its header."""
+    from rockarch.motion.suite import read_suite
+
+    ref = el_centro()
+    path = tmp_path / "CE117.V2c"
+    text = _cosmos_text(ref.a * 100.0)
+    assert re.search(r"\d-\d", text.split("Format=(8F8.3)")[1])  # fields that touch
+    path.write_text(text)
+    got = read_record(path, units="g")  # COSMOS states its units; --units is for text
+    assert got.meta["format"] == "COSMOS" and got.t.size == ref.t.size
+    np.testing.assert_allclose(got.t, ref.t, rtol=1e-12, atol=1e-12)
+    assert np.abs(got.a - ref.a).max() <= 5.0001e-6
+    r = read_suite(path).records[0]
+    assert (r.event, r.year, r.station, r.component, r.magnitude) == (
+        "Record of Imperial Valley Earthquake of May 19, 1940", 1940, "CE-117", "340", 6.95)
+    up = tmp_path / "up.txt"  # any suffix: the first line decides
+    up.write_text(_cosmos_text(ref.a[:1000] * 100.0, orientation=400))
+    assert read_record(up).meta["component"] == "Up"
+
+
+@pytest.mark.parametrize("fmt, kwargs, msg", [
+    ("knet", {"duration": 30}, "last 10.00 s, the header's Duration Time(s) is 30 s (truncated"),
+    ("knet", {"peak": 99.0}, "the header's Max. Acc. is 99 gal (edited or corrupted"),
+    ("knet", {"drop": ("Scale Factor",)}, "needs the header line 'Scale Factor'"),
+    ("knet", {"fs": "fast"}, "Sampling Freq(Hz) must be a positive number"),
+    ("cosmos", {"channels": 2}, "holds 2 channels; rockarch reads a file of one channel"),
+    ("cosmos", {"kind": "raw accel.", "units": "counts (50)"}, "not an acceleration in physical"),
+    ("cosmos", {"kind": "velocity", "units": "cm/sec(04)"}, "not an acceleration in physical"),
+    ("cosmos", {"dt_ms": -999.0}, "the sampling interval (real header value 62, ms) is unknown"),
+    ("cosmos", {"approx": 30}, "the data line says approx 30 secs"),
+    ("cosmos", {"peak": 99.0}, "its header's (real value 64) 99 cm/sec2 (edited or corrupted"),
 ])
-def test_knet_bad_files_give_one_clear_message(tmp_path, kwargs, msg):
-    path = tmp_path / "r.NS"
-    path.write_text(_knet_text(150.0 * np.sin(np.linspace(0.0, 20.0, 1000)), **kwargs))
+def test_knet_and_cosmos_bad_files_give_one_clear_message(tmp_path, fmt, kwargs, msg):
+    write, name = {"knet": (_knet_text, "r.NS"), "cosmos": (_cosmos_text, "r.V2c")}[fmt]
+    path = tmp_path / name
+    path.write_text(write(150.0 * np.sin(np.linspace(0.0, 20.0, 1000)), **kwargs))
     with pytest.raises(ValueError, match=re.escape(msg)):
         read_record(path)
 
 
-def test_esm_header_in_another_order_is_still_esm(tmp_path):
-    """A file of ESM header lines that does not open with EVENT_NAME (ITACA's older files,
-    files written by other tools) is read as ESM, not refused as a two-column file."""
-    text = _esm_text(np.array([0.0, 100.0, -200.0, 50.0, 0.0]))
-    lines = text.splitlines()
-    path = tmp_path / "r.txt"
-    path.write_text("\n".join(lines[1:64] + [lines[0]] + lines[64:]) + "\n")
-    m = read_record(path)
-    assert m.meta["format"] == "ESM" and m.pga == pytest.approx(2.0)
+def test_cosmos_truncated_and_legacy_files(tmp_path):
+    path = tmp_path / "r.V2c"
+    text = _cosmos_text(150.0 * np.sin(np.linspace(0.0, 20.0, 1000)))
+    path.write_text("\n".join(text.splitlines()[:100]) + "\n")
+    with pytest.raises(ValueError, match="the file ends inside its values"):
+        read_record(path)
+    legacy = tmp_path / "CHAN001.V2"  # CSMIP's older format: refused by name, with the way out
+    legacy.write_text("CORRECTED ACCELEROGRAM\n1 2\n")
+    with pytest.raises(ValueError, match="older CSMIP .V1/.V2 format is not read"):
+        read_record(legacy)

@@ -60,8 +60,8 @@ IDA: Group = (
                               "[1/s] (default for mdof walls, columns, colonnades and "
                               "assembly files: their own, at the size given).")),
     ("records", list[Path], typer.Option(None, "--records", help="Folders of records "
-                                         "(.AT2, .ASC, K-NET, two-column) or record files; "
-                                         "several may follow one --records.")),
+                                         "(.AT2, .ASC, K-NET, .V2c, two-column) or record "
+                                         "files; several may follow one --records.")),
     ("more", list[Path], typer.Argument(None, hidden=True)),
     ("units", str, typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2.")),
     ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "

@@ -19,8 +19,8 @@ records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                           help="Record suites: metadata and intensity measures.")
 app.add_typer(records_app, name="records")
 
-SOURCES_ARG = typer.Argument(..., help="Record files (.AT2, .ASC, K-NET or two-column) "
-                             "and/or folders of them (with an optional NGA-West2 "
+SOURCES_ARG = typer.Argument(..., help="Record files (.AT2, .ASC, K-NET, .V2c or "
+                             "two-column) and/or folders of them (with an optional NGA-West2 "
                              "_SearchResults.csv).")
 UNITS_OPT = typer.Option(None, help="Units of two-column records: m/s2 (default), g, cm/s2.")
 APPLY_SCALE_OPT = typer.Option(False, "--apply-scale", help="Multiply each record by the "

@@ -58,8 +58,8 @@ from rockarch.systems import system as make_system
 @options(SWEEP)
 def site_oas(
     records: list[Path] = typer.Option(None, "--records", help="Record files (.AT2, "
-                                       ".ASC, K-NET or two-column) or folders of them; several "
-                                       "may follow one --records."),
+                                       ".ASC, K-NET, .V2c or two-column) or folders of them; "
+                                       "several may follow one --records."),
     more: list[Path] = typer.Argument(None, hidden=True),
     units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
     p_min: float = typer.Option(0.5, help="Smallest p [1/s]."),

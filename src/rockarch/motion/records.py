@@ -1,5 +1,5 @@
 """Readers for strong-motion records: PEER NGA ``.AT2`` files, ESM/ITACA ASCII files, K-NET /
-KiK-net ASCII files and two-column text.
+KiK-net ASCII files, COSMOS-format files (CESMD, USGS) and two-column text.
 
 Records are returned as :class:`rockarch.motion.signals.GroundMotion` in m/s² with uniform
 time steps.
@@ -323,6 +323,140 @@ def read_knet(path: str | Path) -> GroundMotion:
     return GroundMotion(np.arange(gal.size) * dt, values, f"{path.name} ({title})", meta)
 
 
+#: COSMOS strong-motion data format (v1.20; CESMD and the USGS NSMP serve it): the first line
+#: names the data and the text lines, ``Corrected acceleration (Format v01.20 with 13 text
+#: lines)``; an integer and a real header follow, comments, then a data line giving the
+#: points, units and Fortran format of the values.
+_COSMOS_FIRST = re.compile(r"\(Format\s+v\d+\.\d+\s+with\s+(\d+)\s+text\s+lines\)", re.I)
+_COSMOS_HEADER = re.compile(r"^\s*(\d+)\s+(Integer|Real)-header\s+values\s+follow\s+on\s+(\d+)"
+                            r"\s+lines\s*,\s*Format\s*=\s*\(\s*(\d+)\s*[IF](\d+)", re.I)
+_COSMOS_COMMENTS = re.compile(r"^\s*(\d+)\s+Comment\s+line", re.I)
+_COSMOS_DATA = re.compile(r"^\s*(\d+)\s+(.*?)\s*pts\s*,\s*approx\s+([0-9.]+)\s*secs\s*,\s*"
+                          r"units\s*=\s*([^(,]*?)\s*\(\s*\d+\s*\)\s*,\s*Format\s*=\s*"
+                          r"\(\s*(\d+)\s*[EFI](\d+)", re.I)
+#: COSMOS channel orientation codes (integer header 54) of vertical sensors.
+COSMOS_VERTICAL = {400: "Up", 401: "Down", 402: "Vertical"}
+
+
+def is_cosmos(path: str | Path) -> bool:
+    """True if the file's first line is a COSMOS header's (``... (Format v01.20 with 13 text
+    lines)``)."""
+    head = _first_lines(Path(path), 1)
+    return bool(head) and _COSMOS_FIRST.search(head[0]) is not None
+
+
+def _cosmos_fields(path, lines: list[str], k: int, n: int, per: int, width: int,
+                   what: str) -> str:
+    """The ``n`` fixed-width fields (``per`` a line, ``width`` characters each) of the lines
+    from ``k`` on, as one blank-separated string (Fortran fields may touch: -1.5-2.5)."""
+    rows = -(-n // per)
+    if k + rows > len(lines):
+        raise ValueError(f"{path}: the file ends inside its {what} (line {len(lines)}): "
+                         "truncated file")
+    fields = [line[i:i + width] for line in lines[k:k + rows]
+              for i in range(0, len(line.rstrip()), width)]
+    return " ".join(fields[:n])
+
+
+def read_cosmos(path: str | Path) -> GroundMotion:
+    """Read a COSMOS-format acceleration file (v1.20: CESMD's and the USGS's ``.V2c``,
+    ``.V1c`` files; one channel).
+
+    docs/sites.md, "What a folder holds". The first line gives the number of text lines;
+    the integer header (channel orientation: value 54, 400-402 vertical), the real header
+    (the sampling interval in ms: value 62) and the comments follow; then the data line
+    ``N acceleration pts, approx T secs, units=cm/sec2(04), Format=(8F10.5)`` and the values
+    in that fixed-width format. Corrected (V2) and uncorrected (V1) accelerations are read
+    as the file gives them; raw counts (V0) and velocities are refused.
+    """
+    path = Path(path)
+    text = _read_text(path)
+    if "\x00" in text[:8192]:
+        raise ValueError(f"{path}: a binary file, not a COSMOS record")
+    lines = text.splitlines()
+    first = _COSMOS_FIRST.search(lines[0]) if lines else None
+    if first is None:
+        raise ValueError(f"{path}: not a COSMOS file (its first line should end with "
+                         "'(Format v01.20 with 13 text lines)')")
+    k = int(first.group(1))
+    blocks = {}
+    for what in ("Integer", "Real"):
+        m = _COSMOS_HEADER.match(lines[k]) if k < len(lines) else None
+        if m is None or m.group(2).lower() != what.lower():
+            raise ValueError(f"{path}: line {k + 1} should announce the {what.lower()} "
+                             f"header ('100 {what}-header values follow on ...')")
+        n, rows, per, width = int(m.group(1)), int(m.group(3)), int(m.group(4)), int(m.group(5))
+        if rows != -(-n // per):
+            raise ValueError(f"{path}: line {k + 1}: {n} values at {per} a line do not take "
+                             f"{rows} lines")
+        body = _cosmos_fields(path, lines, k + 1, n, per, width, f"{what.lower()} header")
+        blocks[what] = np.fromstring(body, sep=" ")
+        if blocks[what].size != n:
+            raise ValueError(f"{path}: the {what.lower()} header (lines {k + 2}-{k + 1 + rows}) "
+                             f"holds {blocks[what].size} numbers, not {n}")
+        k += 1 + rows
+    ints, reals = blocks["Integer"], blocks["Real"]
+    m = _COSMOS_COMMENTS.match(lines[k]) if k < len(lines) else None
+    if m is None:
+        raise ValueError(f"{path}: line {k + 1} should announce the comment lines")
+    comments = lines[k + 1:k + 1 + int(m.group(1))]
+    k += 1 + int(m.group(1))
+    m = _COSMOS_DATA.match(lines[k]) if k < len(lines) else None
+    if m is None:
+        raise ValueError(f"{path}: line {k + 1} should give the data "
+                         "('N acceleration pts, approx T secs, units=..., Format=(...)')")
+    npts, kind, approx, units = int(m.group(1)), m.group(2).strip(), float(m.group(3)), \
+        m.group(4).strip()
+    if "accel" not in kind.lower() or units.lower() == "counts":
+        raise ValueError(f"{path}: holds {kind} in {units}, not an acceleration in physical "
+                         "units (a raw V0 file or a velocity): use the corrected (V2) file")
+    if npts > limits.max_samples():
+        raise limits.too_many(f"{path} ({npts} pts)", npts, "samples", limits.max_samples(),
+                              "shorten or decimate the record")
+    per, width = int(m.group(5)), int(m.group(6))
+    body = _cosmos_fields(path, lines, k + 1, npts, per, width, "values")
+    rest = lines[k + 1 + -(-npts // per):]
+    more = sum(_COSMOS_FIRST.search(line) is not None for line in rest)
+    if more:
+        raise ValueError(f"{path}: holds {more + 1} channels; rockarch reads a file of one "
+                         "channel (save each channel, from its first line to its 'End of data' "
+                         "line, to a file of its own)")
+    dt_ms = float(reals[61]) if reals.size > 61 else -999.0
+    if not (dt_ms > 0 and math.isfinite(dt_ms)):
+        raise ValueError(f"{path}: the sampling interval (real header value 62, ms) is "
+                         f"unknown ({dt_ms:g})")
+    dt = dt_ms * 1e-3
+    _check_dt(path, dt)
+    if abs(npts * dt - approx) > max(1.0, 0.02 * approx):  # "approx T secs": rounded
+        raise ValueError(f"{path}: {npts} pts at {dt:g} s last {npts * dt:.2f} s, the data "
+                         f"line says approx {approx:g} secs")
+    factor = _units_factor(units)
+    values = _samples(path, body, npts, "pts", factor, f" after line {k + 1}")
+    peak = float(reals[63]) if reals.size > 63 else -999.0  # real header 64: the peak value
+    got = float(np.abs(values).max()) / factor
+    if peak != -999.0 and abs(got - abs(peak)) > max(1e-3 * abs(peak), 1e-5):
+        raise ValueError(f"{path}: its peak is {got:.6g} {units}, its header's (real value 64) "
+                         f"{abs(peak):.6g} {units} (edited or corrupted file?)")
+    orientation = int(ints[53]) if ints.size > 53 else -999
+    scnl = re.search(r"<SCNL>\s*[^.\s]+\.([A-Z0-9]{3})\.", "\n".join(comments))
+    if orientation in COSMOS_VERTICAL:
+        component = COSMOS_VERTICAL[orientation]
+    elif 0 < orientation <= 360:
+        component = f"{orientation:03d}"
+    else:
+        component = scnl.group(1) if scnl else None
+    station = re.search(r"Code:\s*(\S+)", lines[4]) if len(lines) > 4 else None
+    mw = re.search(r"\bMw\s*=\s*([0-9.]+)", lines[2]) if len(lines) > 2 else None
+    year = int(ints[39]) if ints.size > 39 and 1800 < ints[39] < 2300 else None
+    title = lines[1].strip() if len(lines) > 1 else ""
+    meta = {"source": str(path), "title": title, "dt": dt, "npts": npts, "format": "COSMOS",
+            "units_in_file": units, "component": component,
+            "station": station.group(1) if station else None,
+            "magnitude": float(mw.group(1)) if mw else None, "year": year}
+    return GroundMotion(np.arange(npts) * dt, values,
+                        f"{path.name} ({title})" if title else path.name, meta)
+
+
 #: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
 #: acceleration record in the units given, and its integrals (PGV, Arias) would overflow.
 MAX_ACCELERATION = 1e5 * G_STANDARD
@@ -500,11 +634,12 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     """Read a record by its file type: ``.AT2`` (or a PEER header under any name) as PEER, a
     file that opens with ``KEY: value`` lines giving NDATA and SAMPLING_INTERVAL_S as ESM/ITACA
     ASCII, one whose first line
-    is ``Origin Time ...`` as K-NET / KiK-net ASCII, anything else as two-column text.
+    is ``Origin Time ...`` as K-NET / KiK-net ASCII, one whose first line ends with
+    ``(Format v01.20 with 13 text lines)`` as COSMOS, anything else as two-column text.
 
     ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
-    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); AT2, ESM and
-    K-NET files state their own.
+    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); the other formats
+    state their own.
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a file path (str or Path), got {type(path).__name__}")
@@ -521,6 +656,12 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
         return read_esm(path)
     if is_knet(path):
         return read_knet(path)
+    if is_cosmos(path):
+        return read_cosmos(path)
+    if path.suffix.lower() in (".v1", ".v2"):
+        raise ValueError(f"{path}: not a COSMOS-format file (its first line should end with "
+                         "'(Format v01.20 with 13 text lines)'); the older CSMIP .V1/.V2 format "
+                         "is not read: download the COSMOS format (V2c) from CESMD")
     motion = read_two_column(path, units=units or "m/s2")
     if units is None and motion.pga <= G_LIKE_PEAK:
         warnings.warn(UnitsWarning(

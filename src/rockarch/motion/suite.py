@@ -45,6 +45,9 @@ ESM_SUFFIXES = (".asc",)
 #: Suffixes of K-NET (.NS .EW .UD) and KiK-net (1: borehole, 2: surface) ASCII files (any
 #: file whose first line is ``Origin Time ...`` is read as K-NET, whatever its suffix).
 KNET_SUFFIXES = tuple(f".{c}{n}" for c in ("ns", "ew", "ud") for n in ("", "1", "2"))
+#: Suffixes of COSMOS-format files (CESMD, USGS; any file whose first line ends with
+#: ``(Format v01.20 with 13 text lines)`` is read as COSMOS, whatever its suffix).
+COSMOS_SUFFIXES = (".v1", ".v2", ".v1c", ".v2c")
 #: Name of the NGA-West2 metadata file in a downloaded folder.
 SEARCH_RESULTS = "_SearchResults.csv"
 
@@ -176,7 +179,8 @@ def _is_record_file(p: Path) -> bool:
     name = p.name.lower()
     if name.startswith(("_", ".")) or "searchresults" in name or name.startswith("readme"):
         return False
-    return p.suffix.lower() in (".at2", *TWO_COLUMN_SUFFIXES, *ESM_SUFFIXES, *KNET_SUFFIXES)
+    return p.suffix.lower() in (".at2", *TWO_COLUMN_SUFFIXES, *ESM_SUFFIXES, *KNET_SUFFIXES,
+                                *COSMOS_SUFFIXES)
 
 
 def _bundled_hint() -> str:
@@ -193,10 +197,10 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
     """Expand files and folders into record files and the metadata csv files found.
 
     A folder contributes its ``.AT2`` files, its ESM/ITACA ``.ASC`` files, its K-NET /
-    KiK-net files (:data:`KNET_SUFFIXES`) and its two-column files (suffixes
-    :data:`TWO_COLUMN_SUFFIXES`), those not starting with ``_``, sorted by name, and its
-    ``_SearchResults.csv`` if present. Files given explicitly are taken as they are (a file
-    named ``*SearchResults*.csv`` is taken as metadata).
+    KiK-net files (:data:`KNET_SUFFIXES`), its COSMOS files (:data:`COSMOS_SUFFIXES`) and
+    its two-column files (suffixes :data:`TWO_COLUMN_SUFFIXES`), those not starting with
+    ``_``, sorted by name, and its ``_SearchResults.csv`` if present. Files given explicitly
+    are taken as they are (a file named ``*SearchResults*.csv`` is taken as metadata).
     """
     files: list[Path] = []
     metas: list[Path] = []
@@ -214,8 +218,9 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
             found = sorted((q for q in p.iterdir() if q.is_file() and _is_record_file(q)),
                            key=lambda q: q.name)
             if not found:
-                raise ValueError(f"{p}: folder holds no record (.AT2, .ASC, K-NET .NS/.EW "
-                                 f"or two-column {'/'.join(TWO_COLUMN_SUFFIXES)})")
+                raise ValueError(f"{p}: folder holds no record (.AT2, .ASC, K-NET .NS/.EW, "
+                                 f"COSMOS .V2c or two-column "
+                                 f"{'/'.join(TWO_COLUMN_SUFFIXES)})")
             files.extend(found)
             metas.extend(q for q in sorted(p.iterdir())
                          if q.is_file() and q.name.lower().endswith("searchresults.csv"))
@@ -365,7 +370,13 @@ def _header_fields(motion: GroundMotion) -> dict:
     """Event, year, station, component from an NGA ``.AT2`` title line
     ``EVENT, M/D/YYYY, STATION, COMPONENT``, or from an ESM header (EVENT_NAME,
     EVENT_DATE_YYYYMMDD, STATION_NAME or STATION_CODE, STREAM, MAGNITUDE_W, VS30_M/S), or
-    from a K-NET header (the origin time names the event; Mag. is JMA's magnitude)."""
+    from a K-NET header (the origin time names the event; Mag. is JMA's magnitude), or from
+    a COSMOS header (its second line names the event; Mw from its third)."""
+    if motion.meta.get("format") == "COSMOS":
+        m = motion.meta
+        return {"event": m.get("title") or None, "year": m.get("year"),
+                "station": m.get("station"), "component": m.get("component"),
+                "magnitude": m.get("magnitude")}
     if motion.meta.get("format") == "K-NET":
         h = motion.meta.get("header", {})
         origin = h.get("origintime", "")
@@ -416,7 +427,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     Parameters
     ----------
     sources : path or list of paths
-        Record files (``.AT2``, ESM ``.ASC``, K-NET, two-column) and/or folders of them.
+        Record files (``.AT2``, ESM ``.ASC``, K-NET, COSMOS, two-column) and/or folders of
+        them.
     units : str, optional
         Units of two-column records (m/s2 by default; the other formats state their own).
     apply_scale : bool
