@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from rockarch.arch import (
+    NoFourHingeMechanism,
     analyse,
     catenary,
     circular,
@@ -120,10 +121,32 @@ def test_hinges_alternate_faces_and_a_too_thick_ring_is_refused():
         with pytest.raises(ValueError, match=rf"no four-hinge mechanism: ap,min = .* "
                                              rf"{sides} .* too thick"):
             analyse(circular(10.0, 5.0, d))
-    # a catenary of thickness 0.3 x span: a thrust line with 3 touching points here (the
-    # count at a degenerate LP vertex may differ by machine: either refusal names the cause)
-    with pytest.raises(ValueError, match="too thick for"):
-        analyse(catenary(10.0, 3.0, 3.0))
+    # a catenary of thickness 0.3 x span: its thrust line touches the ring at 3 points (it
+    # lifts off an abutment; the count at a degenerate LP vertex may differ by machine:
+    # either refusal names the cause and gives the LP's ap,min)
+    thick = catenary(10.0, 3.0, 3.0)
+    with pytest.raises(NoFourHingeMechanism, match="ap,min = 49.3.* too thick for") as err:
+        analyse(thick)
+    assert err.value.ap_min == pytest.approx(limit_analysis(thick).ap_min, rel=1e-12)
+
+
+def test_a_ring_without_four_hinges_still_runs_as_mdof():
+    """The multi-block arch of a ring too thick for a four-hinge mechanism takes ap,min, p
+    and delta from the general statics of its contact graph (docs/theory.md Eqs. (10.4)-
+    (10.5b)): the corner-force LP's ap,min is the thrust-line LP's (two formulations of the
+    same limit analysis: to 1e-6, HiGHS' tolerance), and with friction it is lower (the
+    ring slides on its abutments)."""
+    from rockarch.mdof import arch_assembly
+    from rockarch.mdof.builders import with_friction
+
+    thick = catenary(10.0, 3.0, 3.0)
+    a = arch_assembly(thick, 20)
+    assert a.ap_min == pytest.approx(limit_analysis(thick, 20).ap_min, rel=1e-6)
+    assert a.info["mechanism"].startswith("general") and "hinges" not in a.info
+    assert 0.5 < a.p_ref < 3.0 and 0.5 < a.delta_ref < 1.6  # a stocky ring: slow, deep
+    assert with_friction(a, 0.6).ap_min < 0.5 * a.ap_min
+    # an arch with a four-hinge mechanism keeps it
+    assert arch_assembly(catenary(10.0, 3.0, 0.25), 20).info["hinges"] == [0, 6, 14, 20]
 
 
 def test_minimum_thickness_at_given_lambda_is_the_lp_inverse():

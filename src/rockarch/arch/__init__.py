@@ -15,6 +15,7 @@ from rockarch.arch.fourhinge import (
     ArchMechanism,
     FourHinge,
     Kinematics,
+    NoFourHingeMechanism,
     analyse,
     closure_limit,
     driving_moment,
@@ -52,11 +53,11 @@ from rockarch.arch.weights import HorizontalWeights, horizontal_weights
 
 __all__ = [
     "CONTINUOUS_BLOCKS", "SHAPES", "Arch", "ArchMechanism", "FourHinge", "Hinge",
-    "HorizontalWeights", "Kinematics", "ThrustResult", "Voussoirs", "analyse", "catenary",
-    "catenary_parameter", "circular", "closure_limit", "driving_moment", "elliptical",
-    "from_contour", "generalized_inertia", "generalized_inertia_du", "horizontal_weights",
-    "is_admissible", "kinematics", "limit_analysis", "make_arch", "mass_per_horizontal_length",
-    "mechanism_from_hinges", "minimum_thickness", "neutral_position",
-    "neutral_position_linear", "pointed", "polyline", "potential", "potential_du", "voussoirs",
-    "weighted_catenary",
+    "HorizontalWeights", "Kinematics", "NoFourHingeMechanism", "ThrustResult", "Voussoirs",
+    "analyse", "catenary", "catenary_parameter", "circular", "closure_limit",
+    "driving_moment", "elliptical", "from_contour", "generalized_inertia",
+    "generalized_inertia_du", "horizontal_weights", "is_admissible", "kinematics",
+    "limit_analysis", "make_arch", "mass_per_horizontal_length", "mechanism_from_hinges",
+    "minimum_thickness", "neutral_position", "neutral_position_linear", "pointed", "polyline",
+    "potential", "potential_du", "voussoirs", "weighted_catenary",
 ]

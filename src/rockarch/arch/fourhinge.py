@@ -350,20 +350,34 @@ class ArchMechanism:
                 "c4_u": self.c4_u}
 
 
-def _check_alternating(res: ThrustResult) -> None:
-    """A four-bar mechanism opens its hinges on alternate faces (e, i, e, i or i, e, i, e).
+class NoFourHingeMechanism(ValueError):
+    """The thrust line at ap,min does not give a four-bar linkage (a very thick ring): its
+    ``ap_min`` [m/s²] is valid, the four-hinge p and delta do not exist."""
+
+    def __init__(self, message: str, ap_min: float):
+        super().__init__(message)
+        self.ap_min = ap_min
+
+
+def _check_four_bar(res: ThrustResult) -> None:
+    """A four-bar mechanism opens four hinges on alternate faces (e, i, e, i or i, e, i, e).
 
     A very thick ring's thrust line grazes one face at two neighbouring joints instead (a
-    semicircle of thickness 0.45 x span, for one): its ap,min is the LP's, but no four-bar
-    linkage, whose parts could move, passes through those hinges."""
+    semicircle of thickness 0.45 x span, for one), or touches the ring at 3 or 5 points (a
+    catenary of rise 0.3 and thickness 0.3 x span: the ring lifts off an abutment): its
+    ap,min is the LP's, but no four-bar linkage, whose parts could move, passes through
+    those points. Raises :class:`NoFourHingeMechanism`."""
     sides = [h.side for h in res.hinges]
-    if any(a == b for a, b in zip(sides[:-1], sides[1:], strict=True)):
-        raise ValueError(
-            f"no four-hinge mechanism: ap,min = {res.ap_min:.4g} m/s², but there the thrust "
-            f"line touches the ring at {', '.join(s[0] for s in sides)} "
-            f"(e: extrados, i: intrados; joints {', '.join(str(h.joint) for h in res.hinges)}"
-            "), not on alternate faces: the ring is too thick for a four-hinge mechanism "
-            "(give a thinner ring)")
+    if len(sides) == 4 and all(a != b for a, b in zip(sides[:-1], sides[1:], strict=True)):
+        return
+    where = "not on alternate faces" if len(sides) == 4 else f"at {len(sides)} points"
+    raise NoFourHingeMechanism(
+        f"no four-hinge mechanism: ap,min = {res.ap_min:.4g} m/s² ({res.lambda_:.3g} g), but "
+        f"there the thrust line touches the ring at {', '.join(s[0] for s in sides)} "
+        f"(e: extrados, i: intrados; joints {', '.join(str(h.joint) for h in res.hinges)}), "
+        f"{where}: the ring is too thick for a four-hinge mechanism, so its p and delta do "
+        "not exist (give a thinner ring; the multi-block engine, --system mdof or "
+        "`rockarch simulate mdof`, takes any mechanism)", res.ap_min)
 
 
 def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: int = 1
@@ -391,7 +405,7 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
     **extrados**, c3p for the one on the intrados (this matches Table 1, where c3 < c3').
     """
     res = limit_analysis(arch, blocks, g=g, direction=direction)
-    _check_alternating(res)
+    _check_four_bar(res)
     mech = mechanism_from_hinges(res.voussoirs, res.hinges, direction=direction, g=g)
     bv = float(potential_du(mech, 0.0)[0])
     bh = g * float(driving_moment(mech, 0.0)[0])  # moment of horizontal loads m*g

@@ -18,14 +18,16 @@ Reference dynamic parameters travel with the assembly (the OAS axes):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from rockarch.arch import analyse, voussoirs
+from rockarch.arch.fourhinge import NoFourHingeMechanism
 from rockarch.core import limits
 from rockarch.core.constants import G
 from rockarch.core.validate import integer, positive, show
+from rockarch.mdof.statics import collapse
 
 
 @dataclass(frozen=True)
@@ -250,8 +252,11 @@ def arch_assembly(arch, n: int, *, g: float = G) -> Assembly:
     """The arch cut into ``n`` voussoirs (joints normal to the axis) between rigid supports.
 
     ap_min from the thrust-line LP of the n-voussoir arch; p_ref and delta_ref from its
-    four-hinge (critical) mechanism. Raises ValueError if n is too small or the arch cannot
-    stand.
+    four-hinge (critical) mechanism. A ring too thick for a four-hinge mechanism (its
+    thrust line at ap,min touches it at 3 or 5 points, or not on alternate faces) takes
+    them from the general statics of its contact graph instead (docs/theory.md Eqs.
+    (10.4)-(10.5b)), whatever its mechanism. Raises ValueError if n is too small or the
+    arch cannot stand.
     """
     n = integer("number of voussoirs (blocks)", n)
     if n < MIN_VOUSSOIRS:
@@ -261,21 +266,29 @@ def arch_assembly(arch, n: int, *, g: float = G) -> Assembly:
     v = voussoirs(arch, n)
     try:
         mech = analyse(arch, n, g=g)
+    except NoFourHingeMechanism:
+        mech = None
     except ValueError as exc:
         raise ValueError(f"{n} voussoirs: {exc}") from None
-    hj = [h.joint for h in mech.hinges]
-    if len(set(hj)) < 4:
+    if mech is not None and len({h.joint for h in mech.hinges}) < 4:
         raise ValueError(f"{n} voussoirs are too few for this arch: the four-hinge mechanism "
                          "needs four distinct joints")
     corners = np.stack([v.intrados, v.extrados], axis=1)
     label = f"{arch.shape} arch l={arch.span:g} f={arch.rise:g}"
     if arch.uniform_thickness:
         label += f" d={arch.uniform_thickness:g}"
-    return Assembly(
+    a = Assembly(
         name=f"MDOF {label} N={n}", kind="arch", mass=np.asarray(v.mass, float),
         inertia=np.asarray(v.inertia, float), centroid=np.asarray(v.centroid, float),
         corners=corners, normal=np.asarray(v.tangent, float), polygons=tuple(v.polygons()),
-        ap_min=float(mech.ap_min), p_ref=float(mech.p), delta_ref=float(mech.delta),
-        size=float(arch.span), g=g,
-        info={"shape": arch.shape, "span": arch.span, "rise": arch.rise, "blocks": n,
-              "hinges": hj, "hinge_sides": [h.side for h in mech.hinges]})
+        ap_min=math.nan, p_ref=math.nan, delta_ref=math.nan, size=float(arch.span), g=g,
+        info={"shape": arch.shape, "span": arch.span, "rise": arch.rise, "blocks": n})
+    if mech is not None:
+        return replace(a, ap_min=float(mech.ap_min), p_ref=float(mech.p),
+                       delta_ref=float(mech.delta),
+                       info={**a.info, "hinges": [h.joint for h in mech.hinges],
+                             "hinge_sides": [h.side for h in mech.hinges]})
+    c = collapse(a)
+    return replace(a, ap_min=float(c.ap_min), p_ref=float(c.p), delta_ref=float(c.delta),
+                   info={**a.info, "mechanism": "general (no four-hinge mechanism)",
+                         "opening_joints": np.flatnonzero(c.opening.any(axis=1)).tolist()})
