@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rockarch import mdof
-from rockarch.arch import analyse, catenary, circular, limit_analysis
+from rockarch.arch import analyse, catenary, circular, elliptical, limit_analysis
 from rockarch.core.constants import G
 from rockarch.mdof import builders as bd
 from rockarch.mdof import polygons as pg
@@ -49,7 +49,8 @@ def test_polygon_block_equals_column_block():
 
 @pytest.mark.parametrize("make,n", [(lambda: catenary(10.0, 3.0, 0.25), 10),
                                     (lambda: catenary(10.0, 3.0, 0.25), 20),
-                                    (lambda: circular(10.0, 5.0, 0.6), 12)])
+                                    (lambda: circular(10.0, 5.0, 0.6), 12),
+                                    (lambda: elliptical(10.0, 3.0, 3.0), 20)])
 def test_chain_lp_agrees_with_thrust_line_lp(make, n):
     # two formulations of the same limit analysis (corner forces vs thrust line): equal
     arch = make()
@@ -62,6 +63,12 @@ def test_chain_lp_agrees_with_thrust_line_lp(make, n):
     hinges = {(h.joint, 1 if h.side == "intrados" else 0)
               for h in analyse(arch, n, direction=c.direction).hinges}
     assert opened == hinges
+    # and the equivalent block of that mechanism: the general linkage's p and neutral angle
+    # (docs/theory.md Eqs. (10.5)-(10.5b), rockarch.mdof.linkage) are the four-hinge
+    # kinematics' (docs/theory.md §5, rockarch.arch.fourhinge), two implementations: to
+    # 1e-9 (measured 1e-13 on these and an elliptical ring d/l = 0.3, delta 0.785 rad)
+    assert c.p == pytest.approx(a.p_ref, rel=1e-9)
+    assert c.delta == pytest.approx(a.delta_ref, rel=1e-9)
 
 
 RINGS = [(make, rise, d) for make in (circular, catenary) for rise in (0.2, 0.3, 0.5)
