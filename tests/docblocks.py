@@ -32,14 +32,18 @@ step writes); ``make test-all`` runs every step in order.
 from __future__ import annotations
 
 import ast
+import contextlib
 import io
 import json
 import os
 import re
+import runpy
 import shlex
 import subprocess
 import sys
 import tokenize
+import traceback
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -421,7 +425,8 @@ def page_script(path: Path, chosen: list[Step]) -> str:
     lines[0] = (f"import sys; sys.path.insert(0, {str(ROOT / 'tests')!r}); "
                 "from docblocks import check_value as __docs_check__, "
                 "run_command as __docs_run__, write_file as __docs_file__; "
-                "__name__ == '__main__' and __import__('conftest')  # the suite's settings")
+                "__name__ == '__main__' and 'tests.conftest' not in sys.modules "
+                "and __import__('conftest')  # the suite's settings (run alone)")
     for s in chosen:
         b = s.block
         if s.kind == "python":
@@ -484,20 +489,58 @@ def run_command(argv: list[str], expected: str, where: str) -> None:
         _mismatch(f"{where}: {' '.join(argv)}\nthe docs show:\n{expected}\nprinted:\n{out}{err}")
 
 
-def run_page(path: Path, everything: bool, folder: Path, langs=("python", "console"),
-             timeout: float = 3600) -> tuple[subprocess.CompletedProcess, list[Step]]:
-    """Run a page's chosen steps as one script in ``folder``; the completed process (its
-    stderr holds one JSON line of run time per command) and the steps run."""
+def run_page(path: Path, everything: bool, folder: Path, langs=("python", "console")
+             ) -> tuple[subprocess.CompletedProcess, list[Step]]:
+    """Run a page's chosen steps as one script in ``folder``; the completed run (its stderr
+    holds one JSON line of run time per command) and the steps run."""
     chosen = selected(steps(path, langs), everything)
     for prefix in REPO_PREFIXES:  # the page runs as from a clone: src/..., examples/... exist
         if not (folder / prefix).exists():
             (folder / prefix.rstrip("/")).symlink_to(ROOT / prefix, target_is_directory=True)
     script = folder / (path.stem + ".md.py")
     script.write_text(page_script(path, chosen), encoding="utf-8")
-    env = dict(os.environ, MPLBACKEND="Agg")
-    proc = subprocess.run([sys.executable, script.name], cwd=folder, capture_output=True,
-                          text=True, env=env, timeout=timeout)
-    return proc, chosen
+    return run_script(script), chosen
+
+
+def run_script(script: Path) -> subprocess.CompletedProcess:
+    """Run a page's script as ``python SCRIPT`` would in its folder (``__name__`` is
+    ``"__main__"``; a process pool's workers import the script by its path), but in this
+    process: the suite's imports and compiled kernels are loaded once per test process, not
+    once per page (~3 s each). Its output is captured; the working folder, ``sys.argv``,
+    ``sys.path``, the environment, the warning filters, numpy's settings and matplotlib's
+    figures are as before afterwards. The exit status: 0, a SystemExit's, or 1 after an
+    exception (its traceback on stderr, naming the page's lines)."""
+    import numpy as np
+
+    out, err = io.StringIO(), io.StringIO()
+    saved = (os.getcwd(), sys.argv[:], sys.path[:], dict(os.environ), np.geterr(),
+             np.get_printoptions())
+    code = 0
+    try:
+        os.chdir(script.parent)
+        sys.argv = [script.name]
+        sys.path.insert(0, str(script.parent))
+        os.environ["MPLBACKEND"] = "Agg"
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), \
+                warnings.catch_warnings():
+            try:
+                runpy.run_path(str(script.resolve()), run_name="__main__")
+            except SystemExit as exc:
+                code = exc.code if isinstance(exc.code, int) else int(exc.code is not None)
+            except Exception:
+                traceback.print_exc()
+                code = 1
+    finally:
+        cwd, sys.argv, sys.path[:], env, npe, npp = saved
+        os.chdir(cwd)
+        os.environ.clear()
+        os.environ.update(env)
+        np.seterr(**npe)
+        np.set_printoptions(**npp)
+        if "matplotlib.pyplot" in sys.modules:
+            sys.modules["matplotlib.pyplot"].close("all")
+    return subprocess.CompletedProcess([sys.executable, script.name], code, out.getvalue(),
+                                       err.getvalue())
 
 
 def timings(stderr: str) -> dict[str, float]:
@@ -511,5 +554,5 @@ def timings(stderr: str) -> dict[str, float]:
 
 
 __all__ = ["Block", "Command", "Step", "blocks", "check_value", "commands", "matches",
-           "page_script", "run_command", "run_page", "selected", "show", "shown_value",
-           "steps", "timings"]
+           "page_script", "run_command", "run_page", "run_script", "selected", "show",
+           "shown_value", "steps", "timings"]
