@@ -442,6 +442,12 @@ def test_cosmos_truncated_and_legacy_files(tmp_path):
     path.write_text("\n".join(text.splitlines()[:100]) + "\n")
     with pytest.raises(ValueError, match="the file ends inside its values"):
         read_record(path)
+    # the channel's velocity after its acceleration (one file, two series) is no second
+    # channel: the acceleration is read
+    both = tmp_path / "both.V2c"
+    both.write_text(text + text.replace("Corrected acceleration", "Corrected velocity")
+                    .replace("acceleration pts", "velocity pts").replace("cm/sec2", "cm/sec"))
+    assert read_record(both).t.size == 1000
     legacy = tmp_path / "CHAN001.V2"  # CSMIP's older format: refused by name, with the way out
     legacy.write_text("CORRECTED ACCELEROGRAM\n1 2\n")
     with pytest.raises(ValueError, match="older CSMIP .V1/.V2 format is not read"):

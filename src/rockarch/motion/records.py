@@ -415,8 +415,9 @@ def read_cosmos(path: str | Path) -> GroundMotion:
                               "shorten or decimate the record")
     per, width = int(m.group(5)), int(m.group(6))
     body = _cosmos_fields(path, lines, k + 1, npts, per, width, "values")
-    rest = lines[k + 1 + -(-npts // per):]
-    more = sum(_COSMOS_FIRST.search(line) is not None for line in rest)
+    rest = lines[k + 1 + -(-npts // per):]  # more channels; a velocity or displacement after
+    more = sum(_COSMOS_FIRST.search(line) is not None and "accel" in line.lower()
+               for line in rest)
     if more:
         raise ValueError(f"{path}: holds {more + 1} channels; rockarch reads a file of one "
                          "channel (save each channel, from its first line to its 'End of data' "
