@@ -77,17 +77,25 @@ def _check_samples(path, acc: np.ndarray) -> None:
         raise ValueError(f"{path}: every sample is zero")
 
 
+def _numbers(body: str) -> np.ndarray | None:
+    """The whitespace-separated numbers of ``body`` (numpy's C parser: 8 bytes per value, no
+    Python float objects), or None if one is not a number."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
+            return np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
+    except (ValueError, DeprecationWarning):
+        return None
+
+
 def _samples(path, body: str, npts: int | None, key: str, factor: float,
              where: str) -> np.ndarray:
     """The ``npts`` whitespace-separated values of ``body`` times ``factor`` [m/s²], checked
     (``key``: the header's count, NPTS or NDATA, or None where the header has none;
     ``where``: the values' place, for errors)."""
-    try:  # numpy's C parser: 8 bytes per value, no Python float objects
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", DeprecationWarning)  # numpy < 2: partial reads
-            values = np.fromstring(body, sep=" ") if body.strip() else np.zeros(0)
-    except (ValueError, DeprecationWarning):
-        raise ValueError(f"{path}: the sample values{where} are not all numbers") from None
+    values = _numbers(body)
+    if values is None:
+        raise ValueError(f"{path}: the sample values{where} are not all numbers")
     if npts is None and values.size > limits.max_samples():
         raise limits.too_many(str(path), values.size, "samples", limits.max_samples(),
                               "shorten or decimate the record")
@@ -390,10 +398,10 @@ def read_cosmos(path: str | Path) -> GroundMotion:
             raise ValueError(f"{path}: line {k + 1}: {n} values at {per} a line do not take "
                              f"{rows} lines")
         body = _cosmos_fields(path, lines, k + 1, n, per, width, f"{what.lower()} header")
-        blocks[what] = np.fromstring(body, sep=" ")
-        if blocks[what].size != n:
+        blocks[what] = _numbers(body)
+        if blocks[what] is None or blocks[what].size != n:
             raise ValueError(f"{path}: the {what.lower()} header (lines {k + 2}-{k + 1 + rows}) "
-                             f"holds {blocks[what].size} numbers, not {n}")
+                             f"does not hold {n} numbers")
         k += 1 + rows
     ints, reals = blocks["Integer"], blocks["Real"]
     m = _COSMOS_COMMENTS.match(lines[k]) if k < len(lines) else None
@@ -405,8 +413,8 @@ def read_cosmos(path: str | Path) -> GroundMotion:
     if m is None:
         raise ValueError(f"{path}: line {k + 1} should give the data "
                          "('N acceleration pts, approx T secs, units=..., Format=(...)')")
-    npts, kind, approx, units = int(m.group(1)), m.group(2).strip(), float(m.group(3)), \
-        m.group(4).strip()
+    npts, approx = int(m.group(1)), float(m.group(3))
+    kind, units = m.group(2).strip(), m.group(4).strip()
     if "accel" not in kind.lower() or units.lower() == "counts":
         raise ValueError(f"{path}: holds {kind} in {units}, not an acceleration in physical "
                          "units (a raw V0 file or a velocity): use the corrected (V2) file")
