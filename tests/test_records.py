@@ -452,3 +452,27 @@ def test_cosmos_truncated_and_legacy_files(tmp_path):
     legacy.write_text("CORRECTED ACCELEROGRAM\n1 2\n")
     with pytest.raises(ValueError, match="older CSMIP .V1/.V2 format is not read"):
         read_record(legacy)
+
+
+def test_a_folder_of_every_format_is_one_suite(tmp_path):
+    """The same 5 s of El Centro as a PEER .AT2, an ESM .ASC, a K-NET .EW, a COSMOS .V2c and
+    a two-column text file: one suite of five records whose motions agree within the
+    coarsest file's rounding (the K-NET count, 2.4e-6 m/s², and its mean removed; COSMOS's
+    3 decimals in cm/s², 5e-6 m/s²)."""
+    from rockarch.motion.signals import GroundMotion
+    from rockarch.motion.suite import read_suite, write_at2
+
+    ref = el_centro()
+    cut = ref.a[:500] - ref.a[:500].mean()  # K-NET removes the mean: give it none to remove
+    dt = ref.t[1] - ref.t[0]
+    write_at2(tmp_path / "a.AT2", GroundMotion(ref.t[:500], cut))
+    (tmp_path / "b.ASC").write_text(_esm_text(cut * 100.0, dt=dt))
+    (tmp_path / "c.EW").write_text(_knet_text(cut * 100.0, duration=5))
+    (tmp_path / "d.V2c").write_text(_cosmos_text(cut * 100.0, approx=5))
+    np.savetxt(tmp_path / "e.txt", np.column_stack([ref.t[:500], cut]))
+    suite = read_suite(tmp_path, units="m/s2")
+    assert [r.motion.meta["format"] for r in suite.records] == [
+        "AT2", "ESM", "K-NET", "COSMOS", "two-column"]
+    for r in suite.records:
+        assert np.abs(r.motion.a - cut).max() <= 6e-6, r.name
+        np.testing.assert_allclose(r.motion.t, ref.t[:500], rtol=1e-9, atol=1e-12)
