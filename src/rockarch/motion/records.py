@@ -88,6 +88,22 @@ def _numbers(body: str) -> np.ndarray | None:
         return None
 
 
+def _header_numbers(path, header: dict, keys: tuple, names: tuple | None = None,
+                    integer: int | None = None) -> list:
+    """The numbers of the header fields ``keys`` (``integer``: the index of one that must be
+    an integer, returned as int); one ValueError naming them all (as ``names``) otherwise."""
+    try:
+        vals = [float(header[k]) for k in keys]
+        if integer is not None:
+            if not vals[integer].is_integer():
+                raise ValueError
+            vals[integer] = int(vals[integer])
+        return vals
+    except ValueError:
+        raise ValueError(f"{path}: {' and '.join(names or keys)} must be numbers, found "
+                         f"{' and '.join(repr(header[k]) for k in keys)}") from None
+
+
 def _samples(path, body: str, npts: int | None, key: str, factor: float,
              where: str) -> np.ndarray:
     """The ``npts`` whitespace-separated values of ``body`` times ``factor`` [m/s²], checked
@@ -215,12 +231,7 @@ def read_esm(path: str | Path) -> GroundMotion:
     kind = header.get("DATA_TYPE", "ACCELERATION").upper()
     if "ACCELERATION" not in kind or "SPECTRUM" in kind:  # ESM also serves spectra (.SA.ASC)
         raise ValueError(f"{path}: not an acceleration time history (DATA_TYPE: {kind})")
-    try:
-        npts = int(header["NDATA"])
-        dt = float(header["SAMPLING_INTERVAL_S"])
-    except ValueError:
-        raise ValueError(f"{path}: NDATA and SAMPLING_INTERVAL_S must be numbers, found "
-                         f"{header['NDATA']!r} and {header['SAMPLING_INTERVAL_S']!r}") from None
+    npts, dt = _header_numbers(path, header, ("NDATA", "SAMPLING_INTERVAL_S"), integer=0)
     if npts > limits.max_samples():
         raise limits.too_many(f"{path} (NDATA={npts})", npts, "samples", limits.max_samples(),
                               "shorten or decimate the record")
@@ -297,12 +308,8 @@ def read_knet(path: str | Path) -> GroundMotion:
     if not (num > 0 and den > 0):
         raise ValueError(f"{path}: Scale Factor must read like '3920(gal)/6182761', found "
                          f"{header['scalefactor']!r}")
-    try:
-        duration = float(header["durationtime(s)"])
-        peak_gal = float(header["maxacc(gal)"])
-    except ValueError:
-        raise ValueError(f"{path}: Duration Time(s) and Max. Acc. (gal) must be numbers, found "
-                         f"{header['durationtime(s)']!r} and {header['maxacc(gal)']!r}") from None
+    duration, peak_gal = _header_numbers(path, header, ("durationtime(s)", "maxacc(gal)"),
+                                         names=("Duration Time(s)", "Max. Acc. (gal)"))
     dt = 1.0 / fs
     _check_dt(path, dt)
     gal = _samples(path, "\n".join(lines[KNET_HEADER_LINES:]), None, "", num / den,
