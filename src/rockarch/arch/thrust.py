@@ -62,7 +62,8 @@ class ThrustResult:
     thrust : (N+1, 2) points where the thrust line crosses each joint.
     eccentricity : (N+1,) e_i (positive towards the extrados).
     normal_force : (N+1,) N_i (compression > 0), in units of mass*g.
-    hinges : tuple of 4 Hinge, left to right.
+    hinges : tuple of Hinge, left to right: the points where the thrust line touches the
+        ring (four on a four-bar mechanism; 2, 3 or 5 on some very thick rings).
     voussoirs : the discretised arch.
     g : float
     """
