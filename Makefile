@@ -14,7 +14,7 @@ $(BIN)/python:
 # cannot be had. Then compiled to bytecode, the packages' own tests left out, and rockarch's
 # sources: a process that imports rockarch starts in 1 s, not 5, even where
 # PYTHONDONTWRITEBYTECODE keeps Python from writing it (docs/performance.md, "Compile time").
-UV_OR_PIP = ($(BIN)/python -m pip install --quiet uv >/dev/null 2>&1 \
+UV_OR_PIP = ((test -x $(BIN)/uv || $(BIN)/python -m pip install --quiet uv >/dev/null 2>&1) \
 	&& $(BIN)/uv pip install --python $(BIN)/python --quiet $(1)) \
 	|| $(BIN)/python -m pip install --quiet $(1)
 SITE_PACKAGES = $$($(BIN)/python -c "import sysconfig; print(sysconfig.get_paths()['purelib'])")
