@@ -421,7 +421,8 @@ def test_cosmos_file_reads_as_the_same_record(tmp_path):
     ("knet", {"peak": 99.0}, "the header's Max. Acc. is 99 gal (edited or corrupted"),
     ("knet", {"drop": ("Scale Factor",)}, "needs the header line 'Scale Factor'"),
     ("knet", {"fs": "fast"}, "Sampling Freq(Hz) must be a positive number"),
-    ("cosmos", {"channels": 2}, "holds 2 channels; rockarch reads a file of one channel"),
+    ("cosmos", {"channels": 2}, "holds 2 acceleration channels (#1 340, #2 340): give one as "
+                                "r.V2c#N (N = 1..2), or the file in a suite (--records)"),
     ("cosmos", {"kind": "raw accel.", "units": "counts (50)"}, "not an acceleration in physical"),
     ("cosmos", {"kind": "velocity", "units": "cm/sec(04)"}, "not an acceleration in physical"),
     ("cosmos", {"dt_ms": -999.0}, "the sampling interval (real header value 62, ms) is unknown"),
@@ -434,6 +435,45 @@ def test_knet_and_cosmos_bad_files_give_one_clear_message(tmp_path, fmt, kwargs,
     path.write_text(write(150.0 * np.sin(np.linspace(0.0, 20.0, 1000)), **kwargs))
     with pytest.raises(ValueError, match=re.escape(msg)):
         read_record(path)
+
+
+def test_cosmos_file_of_several_channels(tmp_path):
+    """A COSMOS file of three channels (340, 250 and the vertical, each followed by its
+    velocity, as in a V2 file): ``FILE#N`` reads channel N as the single-channel file of it
+    reads; a suite reads the two horizontal ones as ``FILE#1``, ``FILE#2`` and leaves the
+    vertical out with a note; wrong channels and ``#N`` on other formats are one line."""
+    from rockarch.motion.suite import read_suite
+
+    cm = [150.0 * np.sin(np.linspace(0.0, 20.0 + 5 * k, 1000)) for k in range(3)]
+    texts = [_cosmos_text(c, orientation=o) for c, o in zip(cm, (340, 250, 400), strict=True)]
+    velocity = [t.replace("Corrected acceleration", "Corrected velocity")
+                .replace("acceleration pts", "velocity pts").replace("cm/sec2", "cm/sec")
+                for t in texts]
+    path = tmp_path / "three.V2c"
+    path.write_text("".join(a + v for a, v in zip(texts, velocity, strict=True)))
+    for k in range(3):
+        one = tmp_path / f"one{k}.V2c"
+        one.write_text(texts[k])
+        got, ref = read_record(f"{path}#{k + 1}"), read_record(one)
+        assert np.array_equal(got.a, ref.a) and np.array_equal(got.t, ref.t)
+        assert got.name.startswith(f"three.V2c#{k + 1} (") and got.meta["channel"] == k + 1
+    suite = read_suite(tmp_path / "three.V2c")
+    assert [r.name for r in suite] == ["three.V2c#1", "three.V2c#2"]
+    assert [r.component for r in suite] == ["340", "250"]
+    assert {r.path for r in suite} == {str(path)}  # the file, for its hash in reports
+    assert suite.notes == ("three.V2c#3: vertical component left out (--vertical keeps it)",)
+    assert [r.name for r in read_suite(f"{path}#2")] == ["three.V2c#2"]
+    with pytest.raises(ValueError, match=re.escape("channel must be 1..3 (the file's "
+                                                   "acceleration channels), got 4")):
+        read_record(f"{path}#4")
+    with pytest.raises(ValueError, match=re.escape("holds one acceleration channel, not "
+                                                   "channel 2: give the file without '#N'")):
+        read_record(f"{tmp_path / 'one0.V2c'}#2")
+    (tmp_path / "r.txt").write_text("0 0.1\n0.01 0.2\n0.02 0.3\n")
+    with pytest.raises(ValueError, match="r.txt is not a COSMOS file"):
+        read_record(f"{tmp_path / 'r.txt'}#1")
+    with pytest.raises(ValueError, match="no such file"):
+        read_record(f"{tmp_path / 'missing.V2c'}#1")
 
 
 def test_cosmos_truncated_and_legacy_files(tmp_path):

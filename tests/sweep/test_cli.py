@@ -226,7 +226,7 @@ def test_site_oas_flags_a_record_given_twice(tmp_path):
     _one_line_error([*base, "--records", str(rec.parent), str(rec)],
                     contains="the same record is given twice")
     _one_line_error([*base, "--records", str(rec), str(copy)],
-                    contains=f"{copy}: the same record as {rec} (identical samples)")
+                    contains=f"{copy.name}: the same record as {rec.name} (identical samples)")
     assert not (tmp_path / "s.nc").exists()
 
 

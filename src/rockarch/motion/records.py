@@ -373,9 +373,9 @@ def _cosmos_fields(path, lines: list[str], k: int, n: int, per: int, width: int,
     return " ".join(fields[:n])
 
 
-def read_cosmos(path: str | Path) -> GroundMotion:
+def read_cosmos(path: str | Path, channel: int | None = None) -> GroundMotion:
     """Read a COSMOS-format acceleration file (v1.20: CESMD's and the USGS's ``.V2c``,
-    ``.V1c`` files; one channel).
+    ``.V1c`` files).
 
     docs/sites.md, "What a folder holds". The first line gives the number of text lines;
     the integer header (channel orientation: value 54, 400-402 vertical), the real header
@@ -383,17 +383,83 @@ def read_cosmos(path: str | Path) -> GroundMotion:
     ``N acceleration pts, approx T secs, units=cm/sec2(04), Format=(8F10.5)`` and the values
     in that fixed-width format. Corrected (V2) and uncorrected (V1) accelerations are read
     as the file gives them; raw counts (V0) and velocities are refused.
+
+    Parameters
+    ----------
+    path : the file.
+    channel : which acceleration channel of a file that holds several (1, 2, ...; the
+        velocity and displacement that a V2 file gives after each are not channels). A file
+        of several channels without ``channel`` is an error that lists them
+        (:func:`read_cosmos_channels` reads them all; a suite does).
     """
     path = Path(path)
+    starts = _cosmos_starts(path)
+    if channel is None and len(starts) > 1:
+        names = ", ".join(f"#{k + 1} {_cosmos_channel(path, starts[k]).meta['component']}"
+                          for k in range(len(starts)))
+        raise ValueError(f"{path}: holds {len(starts)} acceleration channels ({names}): give "
+                         f"one as {path.name}#N (N = 1..{len(starts)}), or the file in a "
+                         "suite (--records), which reads them all")
+    if channel is not None and not (isinstance(channel, (int, np.integer))
+                                    and 1 <= channel <= len(starts)):
+        if len(starts) == 1:
+            raise ValueError(f"{path}: holds one acceleration channel, not channel "
+                             f"{show(channel)}: give the file without '#N'")
+        raise ValueError(f"{path}: channel must be 1..{len(starts)} (the file's acceleration "
+                         f"channels), got {show(channel)}")
+    return _cosmos_channel(path, starts[(channel or 1) - 1])
+
+
+_CHANNEL = re.compile(r"^(.+)#(\d+)$")
+
+
+def split_channel(path: str | Path) -> tuple[Path, int | None]:
+    """``FILE#N`` (channel N of a COSMOS file that holds several) as ``(FILE, N)``; any other
+    path, and a file whose name does end in ``#N``, as ``(path, None)``."""
+    p = Path(path)
+    m = _CHANNEL.match(p.name)
+    if m is None or p.exists():
+        return p, None
+    return p.with_name(m.group(1)), int(m.group(2))
+
+
+def read_cosmos_channels(path: str | Path) -> tuple[GroundMotion, ...]:
+    """Every acceleration channel of a COSMOS file (:func:`read_cosmos`), in file order;
+    a file of several channels names each ``FILE#N (title)`` and keeps ``N`` in
+    ``meta["channel"]``."""
+    path = Path(path)
+    starts = _cosmos_starts(path)
+    return tuple(_cosmos_channel(path, s) for s in starts)
+
+
+def _cosmos_starts(path: Path) -> tuple[tuple[list[str], int, int, int], ...]:
+    """(lines, first line, channel number, channel count) of each acceleration channel: the
+    lines whose COSMOS first line names an acceleration (V2 files follow each channel with
+    its velocity and displacement, under first lines of their own)."""
     text = _read_text(path)
     if "\x00" in text[:8192]:
         raise ValueError(f"{path}: a binary file, not a COSMOS record")
     lines = text.splitlines()
-    first = _COSMOS_FIRST.search(lines[0]) if lines else None
-    if first is None:
+    if not lines or _COSMOS_FIRST.search(lines[0]) is None:
         raise ValueError(f"{path}: not a COSMOS file (its first line should end with "
                          "'(Format v01.20 with 13 text lines)')")
-    k = int(first.group(1))
+    firsts = [i for i, line in enumerate(lines)
+              if _COSMOS_FIRST.search(line) is not None and "accel" in line.lower()]
+    if not firsts or firsts[0] != 0:
+        firsts = [0] + firsts  # the first block is read (and refused if not an acceleration)
+    n = len(firsts)
+    if n > limits.max_records():
+        raise limits.too_many(f"{path} ({n} channels)", n, "records", limits.max_records(),
+                              "split the file")
+    return tuple((lines, i, k + 1, n) for k, i in enumerate(firsts))
+
+
+def _cosmos_channel(path: Path, where: tuple[list[str], int, int, int]) -> GroundMotion:
+    """One channel of a COSMOS file from its first line (``where``: :func:`_cosmos_starts`);
+    line numbers in messages are the file's."""
+    lines, s, channel, channels = where
+    first = _COSMOS_FIRST.search(lines[s])
+    k = s + int(first.group(1))
     blocks = {}
     for what in ("Integer", "Real"):
         m = _COSMOS_HEADER.match(lines[k]) if k < len(lines) else None
@@ -430,13 +496,6 @@ def read_cosmos(path: str | Path) -> GroundMotion:
                               "shorten or decimate the record")
     per, width = int(m.group(5)), int(m.group(6))
     body = _cosmos_fields(path, lines, k + 1, npts, per, width, "values")
-    rest = lines[k + 1 + -(-npts // per):]  # more channels; a velocity or displacement after
-    more = sum(_COSMOS_FIRST.search(line) is not None and "accel" in line.lower()
-               for line in rest)
-    if more:
-        raise ValueError(f"{path}: holds {more + 1} channels; rockarch reads a file of one "
-                         "channel (save each channel, from its first line to its 'End of data' "
-                         "line, to a file of its own)")
     dt_ms = float(reals[61]) if reals.size > 61 else -999.0
     if not (dt_ms > 0 and math.isfinite(dt_ms)):
         raise ValueError(f"{path}: the sampling interval (real header value 62, ms) is "
@@ -461,16 +520,19 @@ def read_cosmos(path: str | Path) -> GroundMotion:
         component = f"{orientation:03d}"
     else:
         component = scnl.group(1) if scnl else None
-    station = re.search(r"Code:\s*(\S+)", lines[4]) if len(lines) > 4 else None
-    mw = re.search(r"\bMw\s*=\s*([0-9.]+)", lines[2]) if len(lines) > 2 else None
+    head = lines[s:s + 5]
+    station = re.search(r"Code:\s*(\S+)", head[4]) if len(head) > 4 else None
+    mw = re.search(r"\bMw\s*=\s*([0-9.]+)", head[2]) if len(head) > 2 else None
     year = int(ints[39]) if ints.size > 39 and 1800 < ints[39] < 2300 else None
-    title = lines[1].strip() if len(lines) > 1 else ""
+    title = head[1].strip() if len(head) > 1 else ""
     meta = {"source": str(path), "title": title, "dt": dt, "npts": npts, "format": "COSMOS",
             "units_in_file": units, "component": component,
             "station": station.group(1) if station else None,
-            "magnitude": float(mw.group(1)) if mw else None, "year": year}
-    return GroundMotion(np.arange(npts) * dt, values,
-                        f"{path.name} ({title})" if title else path.name, meta)
+            "magnitude": float(mw.group(1)) if mw else None, "year": year,
+            "channel": channel, "channels": channels}
+    name = path.name if channels == 1 else f"{path.name}#{channel}"
+    return GroundMotion(np.arange(npts) * dt, values, f"{name} ({title})" if title else name,
+                        meta)
 
 
 #: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
@@ -651,7 +713,8 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     file that opens with ``KEY: value`` lines giving NDATA and SAMPLING_INTERVAL_S as ESM/ITACA
     ASCII, one whose first line
     is ``Origin Time ...`` as K-NET / KiK-net ASCII, one whose first line ends with
-    ``(Format v01.20 with 13 text lines)`` as COSMOS, anything else as two-column text.
+    ``(Format v01.20 with 13 text lines)`` as COSMOS (``FILE#N``: its channel N, of a file
+    that holds several), anything else as two-column text.
 
     ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
     the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); the other formats
@@ -662,7 +725,13 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     if units is not None and not isinstance(units, str):
         raise TypeError(f"units must be a string such as 'm/s2', 'g' or 'cm/s2', got "
                         f"{type(units).__name__}")
-    path = Path(path)
+    path, channel = split_channel(path)
+    if channel is not None:
+        _check_file(path)
+        if not is_cosmos(path):
+            raise ValueError(f"{path}#{channel}: '#N' picks a channel of a COSMOS file of "
+                             f"several, and {path.name} is not a COSMOS file")
+        return read_cosmos(path, channel)
     if path.suffix.lower() == ".at2":
         return read_at2(path)
     _check_file(path)

@@ -31,7 +31,10 @@ from rockarch.motion.records import (
     G_LIKE_PEAK,
     UnitsWarning,
     bundled_record_path,
+    is_cosmos,
+    read_cosmos_channels,
     read_record,
+    split_channel,
 )
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.velocity_pulse import baker_pulse, check_method
@@ -226,6 +229,8 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
                          if q.is_file() and q.name.lower().endswith("searchresults.csv"))
         elif p.is_file():
             (metas if "searchresults" in p.name.lower() else files).append(p)
+        elif split_channel(p)[1] is not None and split_channel(p)[0].is_file():
+            files.append(p)  # FILE#N: one channel of a COSMOS file
         else:
             raise ValueError(f"{p}: no such file or folder{_bundled_hint()}")
     if not files:
@@ -420,6 +425,29 @@ def _is_vertical(component) -> bool:
     return c in VERTICAL or (len(c) == 3 and c.isalpha() and c[2] == "z")
 
 
+def _read_all(files, units, g_like: list):
+    """(file, record name, motion) of every record of ``files``: one per file, one per
+    acceleration channel of a COSMOS file that holds several (named ``FILE#N``). A
+    two-column file read without units whose peak is plausible in g goes into ``g_like``."""
+    for f in files:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", UnitsWarning)
+            if f.is_file() and is_cosmos(f):
+                motions = read_cosmos_channels(f)
+            else:
+                motions = (read_record(f, units=units),)
+        for w in caught:
+            if issubclass(w.category, UnitsWarning):
+                if motions[0].pga <= G_LIKE_PEAK:  # an implausible PGA has its own note
+                    g_like.append(f.name)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        base = split_channel(f)[0]
+        for motion in motions:
+            n = motion.meta.get("channels", 1)
+            yield base, (f"{base.name}#{motion.meta['channel']}" if n > 1 else f.name), motion
+
+
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                search_results: str | Path | None = None, vertical: bool = False) -> Suite:
     """Read a suite from files and folders (see :func:`record_files`).
@@ -462,22 +490,13 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         raise ValueError("--apply-scale needs an NGA-West2 _SearchResults.csv (none found)")
     records, notes, g_like = [], [], []
     total = 0
-    for f in files:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", UnitsWarning)
-            motion = read_record(f, units=units)
-        for w in caught:
-            if issubclass(w.category, UnitsWarning):
-                if motion.pga <= G_LIKE_PEAK:  # an implausible PGA has its own note below
-                    g_like.append(f.name)
-            else:
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    for f, name, motion in _read_all(files, units, g_like):
         total += motion.t.size
         if total > limits.max_suite_samples():  # before the next record is read
-            raise limits.too_many(f"the suite (up to {f.name})", total, "suite_samples",
+            raise limits.too_many(f"the suite (up to {name})", total, "suite_samples",
                                   limits.max_suite_samples(), "give fewer or shorter records")
         fields = _header_fields(motion)
-        row, comp = _match(f.name, rows) if rows else (None, None)
+        row, comp = _match(name, rows) if rows else (None, None)
         if row is not None:
             fields.update({k: row[k] for k in ("rsn", "event", "year", "station", "magnitude",
                                                "mechanism", "rjb", "rrup", "vs30",
@@ -485,24 +504,24 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
             fields["component"] = fields.get("component") or comp
         elif rows:
             if apply_scale:
-                raise ValueError(f"{f.name}: not listed in {metas[0].name} (no RSN match), so "
+                raise ValueError(f"{name}: not listed in {metas[0].name} (no RSN match), so "
                                  "its scale factor is unknown")
-            notes.append(f"{f.name}: not listed in {metas[0].name}")
+            notes.append(f"{name}: not listed in {metas[0].name}")
         if not vertical and (comp == "V" or _is_vertical(fields.get("component"))):
-            notes.append(f"{f.name}: vertical component left out (--vertical keeps it)")
+            notes.append(f"{name}: vertical component left out (--vertical keeps it)")
             continue
         if motion.meta.get("sensor") == "borehole":
-            notes.append(f"{f.name}: KiK-net borehole sensor left out (a motion at depth, not "
+            notes.append(f"{name}: KiK-net borehole sensor left out (a motion at depth, not "
                          "the ground surface's: its .NS2/.EW2 files are)")
             continue
-        m = _RSN_NAME.match(f.name)
+        m = _RSN_NAME.match(name)
         if "rsn" not in fields and m:
             fields["rsn"] = int(m.group(1))
-        rec = SuiteRecord(name=f.name, motion=motion, path=str(f), **fields)
+        rec = SuiteRecord(name=name, motion=motion, path=str(f), **fields)
         records.append(rec)
         lo, hi = PGA_RANGE
         if not lo <= motion.pga <= hi:
-            notes.append(f"{f.name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
+            notes.append(f"{name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
                          "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
     if g_like:
         notes.append(f"{len(g_like)} two-column record(s) read as m/s² without --units have "

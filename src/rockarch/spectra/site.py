@@ -62,10 +62,10 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
             log(note)
     for rec in suite:
         path, m = Path(rec.path), rec.motion
-        first = seen.setdefault(m.fingerprint(), path)
-        if first != path:
-            raise ValueError(f"{path}: the same record as {first} (identical samples); a site "
-                             "counts each record once: leave one out")
+        first = seen.setdefault(m.fingerprint(), rec.name)
+        if first != rec.name:  # names: two channels of one COSMOS file share its path
+            raise ValueError(f"{rec.name}: the same record as {first} (identical samples); a "
+                             "site counts each record once: leave one out")
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
             raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
