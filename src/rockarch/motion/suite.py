@@ -90,7 +90,7 @@ class SuiteRecord:
     year: int | None = None
     station: str | None = None
     component: str | None = None  # e.g. "180" or "H1"
-    magnitude: float | None = None  # moment magnitude Mw
+    magnitude: float | None = None  # Mw (NGA csv, ESM, COSMOS); JMA's Mj for K-NET files
     mechanism: str | None = None  # fault mechanism
     rjb: float | None = None  # Joyner–Boore distance [km]
     rrup: float | None = None  # rupture distance [km]
