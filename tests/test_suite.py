@@ -160,6 +160,18 @@ def test_records_info_text(folder):
     assert "Vs30" in res.stdout and " 0.421 " in res.stdout  # 0.281 g × 1.5
 
 
+def test_records_info_text_shows_a_weak_record(tmp_path):
+    """A weak record (PGA 3e-4 g, as many ESM and K-NET files) keeps its digits in the text
+    table: e-notation where three decimals would print 0.000."""
+    ref = suite.read_suite(bundled_record_path(180)).records[0].motion
+    weak = tmp_path / "weak.txt"
+    np.savetxt(weak, np.column_stack([ref.t, ref.a * (3e-4 * G_STANDARD / ref.pga)]))
+    res = runner.invoke(app, ["records", "info", str(weak), "--units", "m/s2"])
+    assert res.exit_code == 0, res.output
+    row = next(line for line in res.stdout.splitlines() if line.startswith("weak.txt"))
+    assert " 3.0e-04 " in row and "0.000" not in row
+
+
 def test_records_info_pulse_methods(folder):
     # El Centro 180: Baker (2007) indicator 0.09 (non-pulse) and the late flag; the class
     # and the flags are separate columns and keys

@@ -79,8 +79,9 @@ def info(
     for r in rows:
         line = (f"{r['name'][:40]:40s} {(r['event'] or '-')[:22]:22s} "
                 f"{(r['station'] or '-')[:26]:26s} {(r['component'] or '-')[:5]:>5s} "
-                f"{r['dt']:6.3f} {r['duration']:6.1f} {r['pga'] / G_STANDARD:7.3f} "
-                f"{r['pgv']:6.3f} {r['pgd']:6.3f} {r['arias']:6.3f} {r['d5_95']:6.1f} "
+                f"{r['dt']:6.3f} {r['duration']:6.1f} {_num(r['pga'] / G_STANDARD, 7, 3)} "
+                f"{_num(r['pgv'], 6, 3)} {_num(r['pgd'], 6, 3)} {_num(r['arias'], 6, 3)} "
+                f"{r['d5_95']:6.1f} "
                 f"{r['tm']:5.2f} {r['pulse_class']:>10s} {_flags(r):>11s} "
                 f"{_num(r['tp'], 5, 2)}")
         if meta:
@@ -107,7 +108,13 @@ def _flags(row: dict) -> str:
 
 
 def _num(value, width: int, digits: int) -> str:
-    return f"{'-':>{width}s}" if value is None else f"{value:{width}.{digits}f}"
+    """``value`` in ``width`` characters with ``digits`` decimals; "-" for None; a value that
+    those decimals would show as zero (a weak record's PGA of 3e-4 g) in e-notation."""
+    if value is None:
+        return f"{'-':>{width}s}"
+    if value != 0 and abs(value) < 0.5 * 10.0 ** -digits:
+        return f"{value:{width}.{max(width - 6, 0)}e}"
+    return f"{value:{width}.{digits}f}"
 
 
 @records_app.command("synth", short_help="Write a seeded synthetic suite of .AT2 records.")
