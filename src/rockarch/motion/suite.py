@@ -456,7 +456,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     ----------
     sources : path or list of paths
         Record files (``.AT2``, ESM ``.ASC``, K-NET, COSMOS, two-column) and/or folders of
-        them.
+        them. A COSMOS file of several channels gives one record per acceleration channel,
+        named ``FILE#1``, ``FILE#2``, ...; ``FILE#N`` given as a source gives channel N.
     units : str, optional
         Units of two-column records (m/s2 by default; the other formats state their own).
     apply_scale : bool
