@@ -24,6 +24,23 @@ def circ():
     return analyse(circular(10, 2.89, 0.346), 40)
 
 
+def test_closure_limit_is_where_the_linkage_stops_closing(circ):
+    """closure_limit's cheap validity test is the kinematics' own (the same arithmetic):
+    equal on 400 rotations of two mechanisms, both directions of the first; and the limit
+    is the last u that closes (the bisection ends at the float's resolution)."""
+    from rockarch.arch.fourhinge import _closes, closure_limit
+
+    rng = np.random.default_rng(0)
+    mechs = [circ.mechanism, analyse(circular(10, 2.89, 0.346), 40, direction=-1).mechanism,
+             analyse(catenary(10, 3, 1.5)).mechanism]
+    for mech in mechs:
+        lim = closure_limit(mech)
+        for u in [*rng.uniform(-3.0, 3.0, 400), lim, lim + 1e-12 * math.pi]:
+            assert _closes(mech, u) == bool(kinematics(mech, u).valid[0])
+        assert _closes(mech, lim)
+        assert lim == math.pi / 2 or not _closes(mech, lim * (1.0 + 1e-12))
+
+
 def test_kinematics_keeps_the_linkage_closed_and_parts_rigid(circ):
     mech = circ.mechanism
     u = np.linspace(0, 0.8 * circ.delta, 7)

@@ -207,14 +207,27 @@ def driving_moment(mech: FourHinge, u) -> np.ndarray:
     return -mech.direction * np.sum(mech.mass[:, None] * k.dx, axis=0)
 
 
+def _closes(mech: FourHinge, u: float) -> bool:
+    """``kinematics(mech, u).valid[0]``: the same arithmetic, without the parts' motion."""
+    h1, h2, h3, h4 = mech.hinges
+    b, a = h2 - h1, h3 - h4
+    w0 = h3 - h2
+    ell2 = float(w0 @ w0)
+    q = h1 + _rot(mech.sigma * np.atleast_1d(float(u)), b) - h4
+    aa = float(a @ a)
+    qq = np.sum(q * q, axis=-1)
+    cosarg = (aa + qq - ell2) / (2 * math.sqrt(aa) * np.sqrt(qq))
+    return bool(np.abs(cosarg[0]) <= 1.0)
+
+
 def closure_limit(mech: FourHinge, u_max: float = math.pi / 2) -> float:
     """Largest u in (0, u_max] up to which the linkage closes (bisection on validity)."""
-    if bool(kinematics(mech, u_max).valid[0]):
+    if _closes(mech, u_max):
         return u_max
     lo, hi = 0.0, u_max
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        if bool(kinematics(mech, mid).valid[0]):
+        if _closes(mech, mid):
             lo = mid
         else:
             hi = mid
