@@ -105,18 +105,25 @@ class Kinematics:
     d2phi: np.ndarray | None = None
 
 
-def _first(mech: FourHinge, u: np.ndarray):
+def _closure(mech: FourHinge, th1: np.ndarray):
+    """The moved hinge H2(u), H2(u) - H4 and the cosine of the right part's angle at H4 that
+    closes the linkage (it closes where that cosine lies in [-1, 1])."""
     h1, h2, h3, h4 = mech.hinges
-    c1, c2, c3 = mech.centroid
-    b, a = h2 - h1, h3 - h4
-    w0 = h3 - h2
-    ell2 = float(w0 @ w0)
-    th1 = mech.sigma * u
-    h2u = h1 + _rot(th1, b)
+    a, w0 = h3 - h4, h3 - h2
+    h2u = h1 + _rot(th1, h2 - h1)
     q = h2u - h4
     aa = float(a @ a)
     qq = np.sum(q * q, axis=-1)
-    cosarg = (aa + qq - ell2) / (2 * math.sqrt(aa) * np.sqrt(qq))
+    return h2u, q, (aa + qq - float(w0 @ w0)) / (2 * math.sqrt(aa) * np.sqrt(qq))
+
+
+def _first(mech: FourHinge, u: np.ndarray):
+    h1, h2, h3, h4 = mech.hinges
+    c1, c2, c3 = mech.centroid
+    a = h3 - h4
+    w0 = h3 - h2
+    th1 = mech.sigma * u
+    h2u, q, cosarg = _closure(mech, th1)
     valid = np.abs(cosarg) <= 1.0
     # branch through v(0) = 0
     q0 = h2 - h4
@@ -208,16 +215,8 @@ def driving_moment(mech: FourHinge, u) -> np.ndarray:
 
 
 def _closes(mech: FourHinge, u: float) -> bool:
-    """``kinematics(mech, u).valid[0]``: the same arithmetic, without the parts' motion."""
-    h1, h2, h3, h4 = mech.hinges
-    b, a = h2 - h1, h3 - h4
-    w0 = h3 - h2
-    ell2 = float(w0 @ w0)
-    q = h1 + _rot(mech.sigma * np.atleast_1d(float(u)), b) - h4
-    aa = float(a @ a)
-    qq = np.sum(q * q, axis=-1)
-    cosarg = (aa + qq - ell2) / (2 * math.sqrt(aa) * np.sqrt(qq))
-    return bool(np.abs(cosarg[0]) <= 1.0)
+    """``kinematics(mech, u).valid[0]`` without the parts' motion."""
+    return bool(np.abs(_closure(mech, mech.sigma * np.atleast_1d(float(u)))[2][0]) <= 1.0)
 
 
 def closure_limit(mech: FourHinge, u_max: float = math.pi / 2) -> float:
