@@ -463,6 +463,9 @@ def test_cosmos_file_of_several_channels(tmp_path):
     assert {r.path for r in suite} == {str(path)}  # the file, for its hash in reports
     assert suite.notes == ("three.V2c#3: vertical component left out (--vertical keeps it)",)
     assert [r.name for r in read_suite(f"{path}#2")] == ["three.V2c#2"]
+    with pytest.raises(ValueError, match=re.escape("three.V2c#2: the same record is given "
+                                                   "twice")):
+        read_suite([path, f"{path}#2"])
     with pytest.raises(ValueError, match=re.escape("channel must be 1..3 (the file's "
                                                    "acceleration channels), got 4")):
         read_record(f"{path}#4")

@@ -489,7 +489,7 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     rows = read_search_results(metas[0]) if metas else []
     if apply_scale and not rows:
         raise ValueError("--apply-scale needs an NGA-West2 _SearchResults.csv (none found)")
-    records, notes, g_like = [], [], []
+    records, notes, g_like, seen = [], [], [], set()
     total = 0
     for f, name, motion in _read_all(files, units, g_like):
         total += motion.t.size
@@ -518,8 +518,12 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         m = _RSN_NAME.match(name)
         if "rsn" not in fields and m:
             fields["rsn"] = int(m.group(1))
+        if name in seen:
+            raise ValueError(f"{name}: the same record is given twice (a COSMOS file and its "
+                             "channel FILE#N): give each record once")
         rec = SuiteRecord(name=name, motion=motion, path=str(f), **fields)
         records.append(rec)
+        seen.add(name)
         lo, hi = PGA_RANGE
         if not lo <= motion.pga <= hi:
             notes.append(f"{name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
