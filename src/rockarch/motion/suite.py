@@ -229,8 +229,8 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
                          if q.is_file() and q.name.lower().endswith("searchresults.csv"))
         elif p.is_file():
             (metas if "searchresults" in p.name.lower() else files).append(p)
-        elif split_channel(p)[1] is not None and split_channel(p)[0].is_file():
-            files.append(p)  # FILE#N: one channel of a COSMOS file
+        elif split_channel(p)[0].is_file():  # FILE#N: one channel of a COSMOS file
+            files.append(p)
         else:
             raise ValueError(f"{p}: no such file or folder{_bundled_hint()}")
     if not files:
