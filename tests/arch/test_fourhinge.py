@@ -13,6 +13,7 @@ from rockarch.arch import (
     generalized_inertia,
     generalized_inertia_du,
     kinematics,
+    neutral_position,
     potential,
     potential_du,
 )
@@ -83,7 +84,14 @@ def test_virtual_work_agrees_with_the_lp(arch, blocks, direction):
     assert res.ap_min_vw == pytest.approx(res.ap_min, rel=1e-8)
     assert res.Bv > 0 and res.Bh > 0 and res.A > 0
     assert 0 < res.delta < math.pi / 2
-    assert potential_du(res.mechanism, res.delta)[0] == pytest.approx(0.0, abs=1e-9 * res.Bv)
+    # delta is the neutral configuration, V'(u) = 0 on the linkage's own coordinate u; with
+    # direction -1 it is reported on part 3's rotation there (docs/theory.md Eq. 5.6)
+    mech = res.mechanism
+    u0 = res.delta if direction > 0 else neutral_position(mech)
+    bv_u = potential_du(mech, 0.0)[0]
+    assert potential_du(mech, u0)[0] == pytest.approx(0.0, abs=1e-9 * bv_u)
+    if direction < 0:
+        assert res.delta == pytest.approx(abs(kinematics(mech, u0).phi[2, 0]), rel=1e-12)
 
 
 def test_size_effect():
@@ -179,6 +187,24 @@ def test_polyline_and_contour_arches_reproduce_the_analytic_catenary():
         r = analyse(other)
         assert r.ap_min == pytest.approx(ref.ap_min, rel=1e-3)
         assert r.p == pytest.approx(ref.p, rel=1e-3)
+
+
+@pytest.mark.parametrize("arch", [catenary(10, 3, 0.25), circular(8, 3, 0.3)],
+                         ids=["catenary", "circular"])
+def test_mirror_direction_gives_the_same_mechanism(arch):
+    """A symmetric arch under the mirrored load is the mirror image: the same p, delta, Bv,
+    Bh, A and constants (docs/theory.md Eq. 5.6: side −'s coordinate is the mirror of side
+    +'s), and mirrored hinges. Before, side − reported p on its left part: 3.2986 against
+    3.5500 1/s for the catenary, c1 12 % above Table 1."""
+    r1, r2 = analyse(arch, direction=1), analyse(arch, direction=-1)
+    # the 2000-section LP places mirrored hinges at mirrored sections: equal to round-off
+    for key in ("ap_min", "p", "delta", "delta_end", "Bv", "Bh", "A", "c1", "c2", "c3",
+                "c3p", "c4", "c4_u"):
+        assert getattr(r2, key) == pytest.approx(getattr(r1, key), rel=1e-9), key
+    assert r2.end_part == 4 - r1.end_part
+    for h1, h2 in zip(r1.hinges, reversed(r2.hinges), strict=True):
+        assert (h2.x, h2.y, h2.side) == (pytest.approx(arch.span - h1.x, abs=1e-9),
+                                         pytest.approx(h1.y, abs=1e-9), h1.side)
 
 
 def test_non_symmetric_arch_needs_both_directions():

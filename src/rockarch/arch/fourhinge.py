@@ -313,8 +313,11 @@ class ArchMechanism:
     ap_min, lambda_ : from the LP.
     ap_min_vw : g*Bv/Bh from virtual work on the mechanism (must equal ap_min).
     Bv, Bh, A : generalised gravity moment, driving moment per unit acceleration, inertia.
-    delta : neutral value of the mechanism coordinate u (rotation of part 1 about H1, exact
-        kinematics) — the dynamics' delta; delta_linear: linearised.
+    delta : neutral value of the mechanism coordinate u (exact kinematics) — the dynamics'
+        delta; delta_linear: linearised. u is the rotation of the end part on the side the
+        arch falls towards: part 1 about H1 for direction +1, part 3 about H4 for −1 (the
+        mirror image: a symmetric arch has the same p, delta, Bv, Bh and A both ways,
+        docs/theory.md Eq. 5.6). ``mechanism``'s own kinematics take part 1's rotation.
     delta_end, end_part : Table 1's delta: the rotation, at the neutral configuration, of the
         end part next to the extrados inner hinge (``end_part`` 1 = H1–H2 or 3 = H3–H4),
         docs/theory.md Eq. (5.4).
@@ -360,6 +363,16 @@ class ArchMechanism:
                 "hinges": [h.to_dict(joint=not self.continuous) for h in self.hinges],
                 "c1": self.c1, "c2": self.c2, "c3": self.c3, "c3p": self.c3p, "c4": self.c4,
                 "c4_u": self.c4_u}
+
+
+def _on_part3(mech: FourHinge, bv: float, bh: float, a0: float, dlin: float, delta_u: float
+              ) -> tuple[float, float, float, float, float]:
+    """Bv, Bh, A, the linearised and the exact neutral angle on w, part 3's rotation about H4
+    (docs/theory.md Eq. 5.6): w' = r u' at u = 0 with r = |v'(0)|, so Bv and Bh divide by r,
+    A by r², and the neutral configuration is the same one, w = |v(delta_u)|."""
+    r = abs(float(kinematics(mech, 0.0).dphi[2, 0]))
+    delta_w = abs(float(kinematics(mech, delta_u).phi[2, 0]))
+    return bv / r, bh / r, a0 / (r * r), dlin * r, delta_w
 
 
 class NoFourHingeMechanism(ValueError):
@@ -429,6 +442,8 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
         dlin = neutral_position_linear(mech)
     except ValueError:
         dlin = float("nan")
+    if direction < 0:  # on the mirror image of side +'s coordinate (Eq. 5.6)
+        bv, bh, a0, dlin, delta = _on_part3(mech, bv, bh, a0, dlin, delta)
     p = math.sqrt(bv / (a0 * delta))
     span, rise = arch.span, arch.rise
     d = arch.uniform_thickness
@@ -443,7 +458,8 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
     else:
         c3, c3p = pos3, pos2
     end_part = 1 if h2.side == "extrados" else 3
-    delta_end = abs(float(kinematics(mech, delta).phi[end_part - 1, 0]))
+    delta_end = abs(float(kinematics(mech, neutral_position(mech) if direction < 0 else delta
+                                     ).phi[end_part - 1, 0]))
     return ArchMechanism(
         thrust=res, mechanism=mech, continuous=blocks is None, ap_min=res.ap_min,
         lambda_=res.lambda_, ap_min_vw=g * bv / bh, Bv=bv, Bh=bh, A=a0, delta=delta,

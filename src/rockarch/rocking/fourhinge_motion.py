@@ -4,7 +4,8 @@ Side + is the critical (optimal) four-hinge mechanism for a ground acceleration 
 (``analyse(arch, direction=+1)``), side − the one for the opposite acceleration. For a
 symmetric arch side − is the mirror image of side + with the mirrored coordinate (identical
 tables, mirrored response); otherwise it is found by the limit analysis with the opposite
-load and its coordinate is the rotation of its own left part. On each
+load and its coordinate is the rotation of its own left part (the linkage's own; the
+scalars of ``analyse(arch, direction=-1)`` are on its part 3, docs/theory.md Eq. 5.6). On each
 side the tables of A(u), A'(u), V'(u) and the driving moment Q(u) come from the exact
 kinematics of :mod:`rockarch.arch.fourhinge` (docs/theory.md §3 and §5); the motion
 itself is integrated by :mod:`rockarch.rocking.mechanism`.
@@ -28,6 +29,7 @@ from rockarch.arch.fourhinge import (
     generalized_inertia,
     generalized_inertia_du,
     kinematics,
+    neutral_position,
     potential_du,
 )
 from rockarch.arch.geometry import Arch
@@ -100,7 +102,10 @@ def mirror_impact_coefficient(res: ArchMechanism) -> float:
 
 def _side_tables(res: ArchMechanism, e_close: float, n: int):
     mech = res.mechanism
-    return tabulate(res.delta, lambda q: generalized_inertia(mech, q),
+    # on the linkage's own coordinate, its left part's rotation (side −'s reported delta is
+    # on its part 3, the mirror of side +'s coordinate: docs/theory.md Eq. 5.6)
+    delta = res.delta if mech.direction > 0 else neutral_position(mech)
+    return tabulate(delta, lambda q: generalized_inertia(mech, q),
                     lambda q: generalized_inertia_du(mech, q),
                     lambda q: potential_du(mech, q), lambda q: driving_moment(mech, q),
                     e_close, n=n)
