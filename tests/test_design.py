@@ -16,6 +16,7 @@ from rockarch.design import design_check
 from rockarch.motion.records import bundled_record_path
 from rockarch.output.report import write_report
 from rockarch.paper.reference import SECT8_BAND, TABLE2
+from rockarch.risk import fragility as fr
 from rockarch.spectra import site
 
 runner = CliRunner()
@@ -82,6 +83,32 @@ def test_design_monotone_in_thickness(site_file):
     ds = site.load(site_file)
     pga = [design_check(circular(10.0, 2.89, d), ds).pga_safe for d in (0.30, 0.35, 0.40, 0.45)]
     assert np.all(np.diff(pga) > 0)
+
+
+def test_design_with_records_is_never_above_their_first_collapses(site_file):
+    """The site OAS boundary is the first collapse on its grid; the records' IDA at the
+    replacement's p searches the collapse islands below it (theory Eq. (11.30a)). With the
+    IDA the safe ratio is the smaller of the two, so the safe PGA never exceeds a collapse
+    the same method finds (before, a Northridge pair gave a safe PGA of 5.59 m/s² above
+    collapses at 4.0-4.7 m/s²)."""
+    ds = site.load(site_file)
+    arch = circular(10.0, 2.89, 0.35)
+    plain = design_check(arch, ds)
+    chosen = plain.chosen
+    paths = [bundled_record_path(180), bundled_record_path(270)]
+    motions, _ = site.load_records(paths)
+    ida = fr.site_ida(motions, chosen.p, chosen.ap_min, ratio=ds["ratio"].values)
+    res = design_check(arch, ds, repl=plain.replacement, ida=ida)
+    first = np.where(np.isfinite(ida.ratio_collapse), ida.ratio_collapse, np.inf)
+    assert res.ratio_grid == plain.ratio
+    assert res.ratio == min(plain.ratio, first.min())
+    assert res.pga_safe == pytest.approx(res.ratio * chosen.ap_min, rel=1e-15)
+    assert np.all(res.pga_safe <= first * chosen.ap_min)
+    assert res.to_dict()["ratio_site_grid"] == plain.ratio
+    with pytest.raises(ValueError, match="the IDA is at p"):
+        design_check(arch, ds, repl=plain.replacement,
+                     ida=fr.site_ida(motions, 1.1 * chosen.p, chosen.ap_min,
+                                     ratio=ds["ratio"].values))
 
 
 def test_design_cli_contract_and_offline_report(site_file, tmp_path):

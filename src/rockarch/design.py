@@ -19,6 +19,7 @@ inverse, Eqs. 11.36–11.42).
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -52,6 +53,7 @@ class DesignResult:
     ratio_is_lower_bound: bool
     pga_safe: float
     g: float
+    ratio_grid: float = float("nan")
 
     @property
     def chosen(self):
@@ -62,13 +64,23 @@ class DesignResult:
         repl = {**self.chosen.to_dict(), "axis": self.replacement.band.axis,
                 "mass": self.replacement.mass,
                 "original_ap_min": self.replacement.original.ap_min}
-        return {"replacement": repl, "ratio": self.ratio, "pga_safe": self.pga_safe,
-                "pga_safe_g": self.pga_safe / self.g}
+        out = {"replacement": repl, "ratio": self.ratio, "pga_safe": self.pga_safe,
+               "pga_safe_g": self.pga_safe / self.g}
+        if np.isfinite(self.ratio_grid):
+            out["ratio_site_grid"] = self.ratio_grid
+        return out
+
+    @property
+    def islands_lower(self) -> bool:
+        """True where the records' first collapses at p (collapse islands searched) read the
+        site curve lower than the site OAS grid does."""
+        return bool(self.ratio < self.ratio_grid)
 
 
 def design_check(arch: Arch, site_ds: xr.Dataset, *, rule: str = "equivalent",
                  curve: str = "envelope", g: float = G, axis: str = "catenary",
-                 mass: str = "own", repl: Replacement | None = None) -> DesignResult:
+                 mass: str = "own", repl: Replacement | None = None,
+                 ida: fr.IDAResult | None = None) -> DesignResult:
     """Largest safe PGA of ``arch`` at the site (paper Sect. 9, Eq. 16).
 
     Parameters
@@ -80,6 +92,13 @@ def design_check(arch: Arch, site_ds: xr.Dataset, *, rule: str = "equivalent",
         site file's percentile curve).
     axis, mass : the replacement's axis family and mass
         (:func:`rockarch.arch.replacement.replacement`).
+    ida : the site's records' IDA at the replacement's p
+        (:func:`rockarch.risk.fragility.site_ida`, collapse islands searched below the
+        grid, Eq. (11.30a)). The site OAS's boundaries are the first collapse *on its grid*
+        and miss islands narrower than the grid's step; with ``ida`` the ratio is the
+        smaller of the site curve at p and the same curve (envelope or percentile) of the
+        records' first collapses at p (``ratio_grid`` keeps the site curve's value). The
+        normalised and simplified curves, fits over p (Sect. 11.2), are read as they are.
     """
     if rule not in RULES:
         raise ValueError(f"thickness rule must be one of {', '.join(RULES)}, got {rule!r}")
@@ -87,7 +106,19 @@ def design_check(arch: Arch, site_ds: xr.Dataset, *, rule: str = "equivalent",
     repl = repl if repl is not None else replacement(arch, g=g, axis=axis, mass=mass)
     chosen = repl.by_rule(rule)
     ratio, lower = site_mod.curve_at(site_ds, chosen.p, curve)
-    return DesignResult(arch, repl, rule, curve, ratio, lower, ratio * chosen.ap_min, g)
+    grid = float("nan")
+    if ida is not None and curve in SYSTEM_CURVES:  # the two curves that are statistics of
+        # the records' boundaries at p (normalised and simplified curves are fits over p)
+        if not math.isclose(ida.p, chosen.p, rel_tol=1e-9):
+            raise ValueError(f"the IDA is at p = {ida.p:.6g} 1/s, the replacement has p = "
+                             f"{chosen.p:.6g} 1/s")
+        env, char = site_mod.curves(ida.ratio_collapse[:, None],
+                                    float(site_ds.attrs.get("percentile", 50.0)))
+        at_p = float((env if curve == "envelope" else char)[0])
+        grid = ratio
+        if at_p < ratio:
+            ratio, lower = at_p, False
+    return DesignResult(arch, repl, rule, curve, ratio, lower, ratio * chosen.ap_min, g, grid)
 
 
 # --------------------------------------------------------------------------- any system

@@ -9,7 +9,7 @@ from pathlib import Path
 import typer
 
 from rockarch.arch.geometry import make_arch
-from rockarch.arch.replacement import RULES
+from rockarch.arch.replacement import RULES, replacement
 from rockarch.cli._app import app
 from rockarch.cli._common import (
     G_OPT,
@@ -228,17 +228,22 @@ def design(
         site_ds = site_mod.check_block_site(site_mod.load(site_file), site_file)
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
-    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g,
-                       axis=replacement_axis, mass=replacement_mass)
+    repl = replacement(arch, g=g, axis=replacement_axis, mass=replacement_mass)
+    ida = None
+    if records:  # the records' first collapses at p, islands searched (Eq. (11.30a))
+        chosen = repl.by_rule(thickness_rule)
+        ida = fr.site_ida(suite.motions, chosen.p, chosen.ap_min,
+                          alpha=float(site_ds.attrs["alpha"]), names=suite.names,
+                          ratio=site_ds["ratio"].values)
+    res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g, repl=repl,
+                       ida=ida)
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
     extra, html_extra = {}, ""
     if records:
         try:
-            frag = fr.site_fragility(suite.motions, res.chosen.p, res.chosen.ap_min,
-                                     alpha=float(site_ds.attrs["alpha"]), names=suite.names,
-                                     ratio=site_ds["ratio"].values)
+            frag = fr.fit_ida(ida, hint=fr.SITE_HINT)
         except fr.TooFewCollapses as exc:  # the safe PGA is still the answer
             if site_hazard is not None:
                 raise ValueError(f"--hazard needs the records' fragility: {exc}") from None
@@ -467,7 +472,10 @@ def _safe_pga(res, g: float) -> str:
     """'ap/ap,min = R -> safe PGA P m/s² = P/g g' of a design result; '>=' where the site
     curve reaches the top of the ratio range (a lower bound)."""
     low = res.ratio_is_lower_bound
-    return (f"ap/ap,min {'>=' if low else '='} {res.ratio:.4f} -> safe PGA "
+    islands = (f" (the records' first collapses at p, collapse islands searched; the site "
+               f"OAS grid reads {res.ratio_grid:.4f})" if getattr(res, "islands_lower", False)
+               else "")
+    return (f"ap/ap,min {'>=' if low else '='} {res.ratio:.4f}{islands} -> safe PGA "
             f"{'>= ' if low else ''}{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
 
 

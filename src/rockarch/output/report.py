@@ -87,6 +87,10 @@ def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inpu
     g = result.g
     lower = " (at least: no record overturns within the computed range)" \
         if result.ratio_is_lower_bound else ""
+    islands = (f"from the {result.curve} of the records' first collapses at p (collapse "
+               f"islands searched below the site OAS grid, which reads "
+               f"{result.ratio_grid:.4f} there) " if result.islands_lower
+               else f"read on the site's {result.curve} ")
     records = table(["record", "PGA [g]", "SHA-256 of the file"], [
         (n, f"{pga / G_STANDARD:.4f}", h) for n, pga, h in zip(
             site_ds["record_name"].values, site_ds["record_pga"].values,
@@ -103,7 +107,7 @@ def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inpu
 Method: paper Sect. 9 (replacement catenary arch, slender-block OAS of the site).</p>
 <div class="result">Largest safe peak ground acceleration:
 <b>{result.pga_safe:.3f} m/s² = {result.pga_safe / g:.3f} g</b><br>
-ap/ap,min = {result.ratio:.4f}{lower} read on the site's {result.curve} at
+ap/ap,min = {result.ratio:.4f}{lower} {islands}at
 p = {c.p:.4f} 1/s; ap,min = {c.ap_min:.4f} m/s² ({result.rule} thickness).
 Below this PGA the arch may move but does not collapse.</div>
 <h2>Arch and replacement catenary arch</h2>

@@ -519,23 +519,32 @@ def fragility(system, motions: Sequence[GroundMotion], p: float, *,
                    im_grid=im_grid, seed=seed)
 
 
-def site_fragility(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
-                   alpha: float | None = None, names=None, ratio=None, tol: float = OAS_TOL,
-                   t_free: float | None = None, n_bootstrap: int = N_BOOTSTRAP,
-                   seed: int = 0, executor=None, store=None, progress: bool = False
-                   ) -> Fragility:
-    """Fragility in PGA [m/s²] of a structure replaced by the site's slender block (the
-    design method of docs/theory.md Sect. 7): the IDA of the block of slenderness
-    ``alpha`` (default the site's) at the structure's ``p``, with collapse points in units
-    of the structure's ``ap_min`` (PGA = ratio·ap_min, Eq. (11.30))."""
+def site_ida(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
+             alpha: float | None = None, names=None, ratio=None, tol: float = OAS_TOL,
+             t_free: float | None = None, executor=None, store=None,
+             progress: bool = False) -> IDAResult:
+    """IDA of a structure replaced by the site's slender block (the design method of
+    docs/theory.md Sect. 7): the block of slenderness ``alpha`` (default the site's) at the
+    structure's ``p``, collapse islands searched below the grid (Eq. (11.30a)), collapse
+    points in units of the structure's ``ap_min`` (PGA = ratio·ap_min, Eq. (11.30))."""
     kw = {} if t_free is None else {"t_free": t_free}
     block = BlockSystem(alpha=site.ALPHA if alpha is None else alpha, **kw)
     res = ida(block, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
               store=store, progress=progress)
-    res = replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
-                  f"(replacement, ap,min = {ap_min:.4g} m/s2)")
-    return fit_ida(res, n_bootstrap=n_bootstrap, seed=seed,
-                   hint="give more records, or records that collapse at different levels")
+    return replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
+                   f"(replacement, ap,min = {ap_min:.4g} m/s2)")
+
+
+#: What to do when too few of a site's records collapse the replacement's block.
+SITE_HINT = "give more records, or records that collapse at different levels"
+
+
+def site_fragility(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
+                   n_bootstrap: int = N_BOOTSTRAP, seed: int = 0, **kw) -> Fragility:
+    """Fragility in PGA [m/s²] of a structure replaced by the site's slender block: the
+    lognormal fit of :func:`site_ida` (keywords as there)."""
+    return fit_ida(site_ida(motions, p, ap_min, **kw), n_bootstrap=n_bootstrap, seed=seed,
+                   hint=SITE_HINT)
 
 
 def design_summary(frag: Fragility, *, pga: float | None = None,
