@@ -351,6 +351,12 @@ class ArchMechanism:
     def hinges(self) -> tuple[Hinge, ...]:
         return self.thrust.hinges
 
+    @property
+    def delta_linkage(self) -> float:
+        """The neutral value of the linkage's own coordinate, part 1's rotation about H1
+        (``delta`` itself for direction +1; for −1 ``delta`` is on part 3, Eq. 5.6)."""
+        return self.delta if self.mechanism.direction > 0 else neutral_position(self.mechanism)
+
     def to_dict(self) -> dict:
         """The CLI's JSON contract (joint is None for the continuous mechanism).
 

@@ -87,8 +87,8 @@ def _figsize(arch, width: float = 8.0) -> tuple[float, float]:
 def mechanism_figure(res: ArchMechanism, *, u: float | None = None):
     """The arch, its thrust line at collapse, the hinges, the mechanism displaced.
 
-    The displaced shape is drawn at u = delta/2 (half way to the neutral position) unless
-    ``u`` is given.
+    The displaced shape is drawn half way to the neutral position, at u = delta/2 on the
+    linkage's coordinate (part 1's rotation), unless ``u`` is given.
     """
     v = res.thrust.voussoirs
     arch = v.arch
@@ -99,13 +99,14 @@ def mechanism_figure(res: ArchMechanism, *, u: float | None = None):
         for a, b in zip(v.intrados, v.extrados, strict=False):
             ax.plot([a[0], b[0]], [a[1], b[1]], color="0.55", lw=0.5, zorder=2)
     draw_thrust_line(ax, res, f"thrust line, ap,min = {res.ap_min:.3f} m/s²")
-    uu = 0.5 * res.delta if u is None else float(u)
+    uu = 0.5 * res.delta_linkage if u is None else float(u)
     for i, poly in enumerate(displaced_parts(res, uu)):
         ax.plot(poly[:, 0], poly[:, 1], color="tab:blue", lw=1.0, zorder=3,
                 label=f"mechanism at u = {uu:.3g} rad" if i == 0 else None)
     draw_hinges(ax, res.hinges)
     ax.set_title(f"{arch.shape} arch l = {arch.span:g} m, f = {arch.rise:g} m: p = "
-                 f"{res.p:.3f} 1/s, delta = {res.delta:.4f} rad", fontsize=10)
+                 f"{res.p:.3f} 1/s, delta = {res.delta_end:.4f} rad (part {res.end_part}, "
+                 "Table 1)", fontsize=10)
     _finish(ax, 3)
     return fig
 

@@ -29,7 +29,6 @@ from rockarch.arch.fourhinge import (
     generalized_inertia,
     generalized_inertia_du,
     kinematics,
-    neutral_position,
     potential_du,
 )
 from rockarch.arch.geometry import Arch
@@ -104,8 +103,7 @@ def _side_tables(res: ArchMechanism, e_close: float, n: int):
     mech = res.mechanism
     # on the linkage's own coordinate, its left part's rotation (side −'s reported delta is
     # on its part 3, the mirror of side +'s coordinate: docs/theory.md Eq. 5.6)
-    delta = res.delta if mech.direction > 0 else neutral_position(mech)
-    return tabulate(delta, lambda q: generalized_inertia(mech, q),
+    return tabulate(res.delta_linkage, lambda q: generalized_inertia(mech, q),
                     lambda q: generalized_inertia_du(mech, q),
                     lambda q: potential_du(mech, q), lambda q: driving_moment(mech, q),
                     e_close, n=n)
