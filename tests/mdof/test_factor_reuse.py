@@ -37,10 +37,11 @@ def test_sliding_wall_reuses_the_factors_and_solves_as_fresh_ones():
     gtol = 1e-4 * m.thick_min
     x, y, ph, vx, vy, om = kin.at_rest(m.c0[:, 0].copy(), m.c0[:, 1].copy())
     xm, ym, phm = kin.triple(x.shape[0])
+    screw = np.ones(x.shape[0], dtype=bool)  # every block on its contacts (kin.advance)
     n_steps, dv, worst, prox_steps = 200, 0.0, 0.0, 0
     for step in range(n_steps):
         ag = 0.8 * G if step < 150 else -0.8 * G
-        kin.advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
+        kin.advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm, screw)
         vx -= h * ag
         vy -= h * G
         vf = (vx.copy(), vy.copy(), om.copy())
@@ -60,7 +61,7 @@ def test_sliding_wall_reuses_the_factors_and_solves_as_fresh_ones():
             n_rows = 3 * m.n0.shape[0] + 2 * keep.cnt[0]  # joints' rows, point contacts' rows
             worst = max(worst, law_residual(n_rows, keep.rows, keep.bias, keep.lam, eps, eps,
                                             keep.sw, v))
-        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph, screw)
     slide = np.abs(x - m.c0[:, 0])
     assert slide.min() > 0.01 and np.ptp(x - m.c0[:, 0]) < 1e-6  # slides as one body
     assert np.abs(ph).max() < 1e-6  # without turning: J moves by round-off only

@@ -39,11 +39,12 @@ def test_interior_point_meets_the_law_and_agrees_with_the_semismooth_solve():
     gtol = 1e-4 * m.thick_min
     x, y, ph, vx, vy, om = kin.at_rest(m.c0[:, 0].copy(), m.c0[:, 1].copy())
     xm, ym, phm = kin.triple(x.shape[0])
+    screw = np.ones(x.shape[0], dtype=bool)  # every block on its contacts (kin.advance)
     scale = np.tile([1.0, 1.0, m.thick_min], nbod)
     checked, worst_res, worst_dv, iters = 0, 0.0, 0.0, []
     for step in range(60):
         ag = 0.8 * G if step < 40 else -0.8 * G
-        kin.advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
+        kin.advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm, screw)
         vx -= h * ag
         vy -= h * G
         trial = None
@@ -64,7 +65,7 @@ def test_interior_point_meets_the_law_and_agrees_with_the_semismooth_solve():
             v = np.column_stack([vx, vy, om]).ravel()
             worst_dv = max(worst_dv, np.abs((v_ip - v) * scale).max())
             checked += 1
-        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph)
+        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * h, x, y, ph, screw)
     # the wall slid: ½(0.8 − 0.6)·g·(0.04 s)² = 1.57 mm by Newmark before the reversal
     # (measured 1.60 mm; asserted above 1 mm, so that the sliding steps were checked)
     assert np.abs(x - m.c0[:, 0]).min() > 1e-3

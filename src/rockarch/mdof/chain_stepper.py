@@ -338,10 +338,11 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     v_imp = IMPACT_SPEED * g * h
     v_app = APPROACH_SPEED * g * h
     reach = IMPACT_HORIZON * h
+    screw = np.ones(nbod, dtype=np.bool_)  # a chain's blocks turn about their hinges
     while step < n_steps:
         nsub, t_step, hc = step_start(sub, ahead, t, t_step, nsub, h, hc, lam)
         i_prev, agbar = predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak, ck,
-                                amp)
+                                amp, screw)
         for j in range(nbod):
             vfx[j] = vx[j] - hc * agbar
             vfy[j] = vy[j] - hc * g
@@ -351,7 +352,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
                             wb, kb, lb, rhs, lam, ufree, inset, free, sol, vx, vy, om)
         if its < 0:
             fails += 1
-        advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
+        advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph, screw)
         any_keep = False
         struck = False
         for r in range(n):

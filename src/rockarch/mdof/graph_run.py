@@ -113,6 +113,22 @@ def _sliding(m, ws, vx, vy, om, tol_u, free_t):
 
 
 @nb.njit(cache=True)
+def _touched(ws, n_rows, screw):
+    """``screw[j]``: body j took an impulse in the step's solve (it moves about a contact,
+    :func:`rockarch.mdof.kinematics.advance`); the others are in flight."""
+    rba, rbb, lam = ws.rows.rba, ws.rows.rbb, ws.lam
+    screw[:] = False
+    for r in range(n_rows):
+        if lam[r] != 0.0:
+            a = rba[r]
+            b = rbb[r]
+            if a >= 0:
+                screw[a] = True
+            if b >= 0:
+                screw[b] = True
+
+
+@nb.njit(cache=True)
 def _fallen(m, gap):
     """True if some block has slid off everything that carried it: every joint of the block
     has faces that no longer overlap (a block falling free: collapse)."""
@@ -200,6 +216,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     reach = kin.IMPACT_HORIZON * h
     retry = False
     i_step = i_prev
+    screw = np.ones(nbod, dtype=np.bool_)  # bodies in contact (kin.advance)
     while step < n_steps:
         nsub, t_step, hc = kin.step_start(sub, ahead or retry, t, t_step, nsub, h, hc, ws.lam)
         retry = False
@@ -210,7 +227,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 svy[j] = vy[j]
                 som[j] = om[j]
         i_prev, agbar = kin.predict(x, y, ph, vx, vy, om, hc, xm, ym, phm, t, i_prev, tk, ak,
-                                    ck, amp)
+                                    ck, amp, screw)
         for j in range(nbod):
             vx[j] -= hc * agbar
             vy[j] -= hc * g
@@ -244,7 +261,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         points_max = max(points_max, n_touch)
         n_sl = _sliding(m, ws, vx, vy, om, tol_u, free_t)
         slide_max = max(slide_max, n_sl)
-        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph)
+        _touched(ws, n + 2 * ws.cnt[0], screw)
+        kin.advance(xm, ym, phm, vx, vy, om, 0.5 * hc, x, y, ph, screw)
         any_keep = False
         struck = False
         for r in range(n):

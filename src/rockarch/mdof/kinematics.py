@@ -56,12 +56,15 @@ def strikes(u, bias, v_app):
 
 
 @nb.njit(cache=True)
-def advance(x, y, ph, vx, vy, om, dt, xo, yo, pho):
-    """Exact rigid motion over dt with a constant spatial twist (rotation about the fixed
-    instantaneous centre); (vx, vy) are turned in place to the centroid's new velocity."""
+def advance(x, y, ph, vx, vy, om, dt, xo, yo, pho, screw):
+    """Exact rigid motion over dt. A body in contact (``screw[j]``: it took an impulse in
+    the last solve) moves with a constant spatial twist (rotation about the fixed
+    instantaneous centre, exact for a block turning about a corner) and (vx, vy) are turned
+    in place to the centroid's new velocity; a free body (in flight) keeps its centroid's
+    velocity and turns about its centroid (docs/theory.md §6)."""
     for j in range(x.shape[0]):
         a = om[j] * dt
-        if a == 0.0:
+        if a == 0.0 or not screw[j]:
             xo[j] = x[j] + vx[j] * dt
             yo[j] = y[j] + vy[j] * dt
         else:
@@ -201,11 +204,11 @@ def energy(mass, ii, vx, vy, om, y, cy0, g):
 
 
 @nb.njit(cache=True)
-def predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck, amp):
+def predict(x, y, ph, vx, vy, om, h, xm, ym, phm, t, i_prev, tk, ak, ck, amp, screw):
     """Start of a Moreau–Jean step (docs/theory.md §6): the midpoint configuration
-    (xm, ym, phm) half a step ahead, and the ground's velocity integral at t + h with the
-    mean ground acceleration over the step. Returns (integral, mean)."""
-    advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm)
+    (xm, ym, phm) half a step ahead (:func:`advance`), and the ground's velocity integral at
+    t + h with the mean ground acceleration over the step. Returns (integral, mean)."""
+    advance(x, y, ph, vx, vy, om, 0.5 * h, xm, ym, phm, screw)
     return ground_increment(t, h, i_prev, tk, ak, ck, amp)
 
 
