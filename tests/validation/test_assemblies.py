@@ -261,6 +261,26 @@ def test_json_assembly_in_millimetres_warns():
     assert a.ap_min == pytest.approx(assembly_from_dict({"blocks": blocks}).ap_min, rel=1e-9)
 
 
+@pytest.mark.parametrize("k, hint", [(1000.0, "millimetres"), (1e-4, "kilometres")])
+def test_a_gate_in_wrong_units_has_the_same_statics(k, hint):
+    """A gate (two piers 0.5 x 2.5 m, a lintel 2.7 x 0.5 m, mu = 0.7) read as given at 1000
+    and 1e-4 times its size: the same ap,min (scale-free) and p x 1/sqrt(k) (p² ∝ g/length),
+    Eq. (11.33). Before, HiGHS's absolute tolerances failed it: 'cannot stand under
+    gravity with any margin' at 1000x, 'hangs on shear' at 1e-4x."""
+    gate = {"friction": 0.7, "blocks": [{"polygon": _rect(0, 0, 0.5, 2.5)},
+                                        {"polygon": _rect(2, 0, 0.5, 2.5)},
+                                        {"polygon": _rect(-0.1, 2.5, 2.7, 0.5)}]}
+    ref = assembly_from_dict(gate)
+    big = {**gate, "blocks": [{"polygon": (np.asarray(b["polygon"]) * k).tolist()}
+                              for b in gate["blocks"]]}
+    with pytest.warns(UnitsWarning, match=hint):
+        a = assembly_from_dict(big)
+    # LP tolerance: HiGHS's 1e-7 on the scaled problem (the metre gate is solved as given)
+    assert a.ap_min == pytest.approx(ref.ap_min, rel=1e-7)
+    assert a.p_ref == pytest.approx(ref.p_ref / math.sqrt(k), rel=1e-7)
+    assert a.delta_ref == pytest.approx(ref.delta_ref, rel=1e-7)
+
+
 def test_supports_move_with_the_ground():
     # a block against a support: the support is the ground (body -1)
     blk, sup = [_rect(0, 0, 0.4, 1.0)], [_rect(0.4, 0, 1, 2)]

@@ -105,7 +105,8 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
     if not PLAUSIBLE_SIZE[0] <= out.size <= PLAUSIBLE_SIZE[1]:
         warnings.warn(UnitsWarning(
             f"{source}: the structure is {out.size:.4g} m across: coordinates are in metres "
-            "(millimetres? divide them by 1000)"), stacklevel=2)
+            + ("(millimetres? divide them by 1000)" if out.size > PLAUSIBLE_SIZE[1] else
+               "(kilometres? multiply them by 1000)")), stacklevel=2)
     return out
 
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import linprog
@@ -39,6 +39,9 @@ from rockarch.mdof.linkage import corner_velocity, neutral_angle
 
 #: Largest load multiplier searched: a "mechanism" needing more than 1000 g is none.
 LAMBDA_CAP = 1e3
+#: Sizes [m] of the structures whose LPs are solved as given; larger or smaller ones are
+#: scaled by a power of two first (exact), to O(1) numbers for HiGHS's absolute tolerances.
+SIZE_RANGE = (2.0**-6, 2.0**6)
 #: Joints from which the non-associative iteration shows a progress bar on a terminal (the
 #: 205-block wall, 575 joints, takes a few seconds).
 PROGRESS_JOINTS = 100
@@ -240,11 +243,29 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
         hit = sc.load(key, Collapse)
         if hit is not None:
             return hit
-    out = _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, g=g,
-                 direction=direction, names=names, friction=friction)
+    # HiGHS's tolerances are absolute: a structure far from metres (a file in millimetres)
+    # is solved scaled by a power of two (exact), lengths by s, masses by s², then unscaled
+    corners = np.asarray(corners, float)
+    size = float(np.ptp(corners.reshape(-1, 2), axis=0).max())
+    s = 1.0 if SIZE_RANGE[0] <= size <= SIZE_RANGE[1] else 2.0 ** -round(math.log2(size))
+    out = _solve(mass * s**2, np.asarray(inertia, float) * s**4,
+                 np.asarray(centroid, float) * s, corners * s, normal, body_a, body_b, mu,
+                 g=g, direction=direction, names=names, friction=friction)
+    if s != 1.0:
+        out = _unscaled(out, s)
     if key is not None:
         sc.save(key, out)
     return out
+
+
+def _unscaled(c: Collapse, s: float) -> Collapse:
+    """The collapse of a structure solved with its lengths × s and masses × s²: forces / s²,
+    p·√s (p² ∝ g/length), a rocking mechanism's velocities per unit rotation rate / s."""
+    vel = c.velocity.copy()
+    if np.abs(vel[:, 2]).max() == 1.0:  # normalised by the largest rotation rate
+        vel[:, :2] /= s
+    return replace(c, velocity=vel, normal_force=c.normal_force / s**2,
+                   tangential_force=c.tangential_force / s**2, p=c.p * math.sqrt(s))
 
 
 def _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, *, g: float,
