@@ -99,5 +99,9 @@ def test_bad_grids(p, ratio, msg):
 def test_load_rejects_other_files(tmp_path):
     f = tmp_path / "x.nc"
     f.write_text("not netcdf")
-    with pytest.raises(ValueError, match="not a readable NetCDF"):
+    with pytest.raises(ValueError, match="x.nc: not a NetCDF file"):  # one short line
         spectra.load(f)
+    f.write_bytes(b"CDF\x01 but cut short")  # the signature, not the file: the reader's
+    with pytest.raises(ValueError, match="not a readable NetCDF file") as err:  # first line
+        spectra.load(f)
+    assert "\n" not in str(err.value) and len(str(err.value)) < 300

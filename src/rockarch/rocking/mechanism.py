@@ -219,9 +219,9 @@ def generic(p: float, delta: float, ap_min: float, g: float = G,
     side = tabulate(delta, np.ones_like, np.zeros_like, lambda q: p * p * (delta - q),
                     lambda q: np.full_like(q, p * p * delta / ap_min),
                     housner_restitution(delta), n=2)
-    return SDOFMechanism(f"SDOF p={p:g} delta={delta:g} ap_min={ap_min:g}", side, side, g,
-                         1.0, restitution, {"kind": "generic", "delta": delta,
-                                            "ap_min": ap_min})
+    return SDOFMechanism(f"SDOF p={p:g} 1/s, delta={delta:g} rad, ap,min={ap_min:g} m/s²",
+                         side, side, g, 1.0, restitution,
+                         {"kind": "generic", "delta": delta, "ap_min": ap_min})
 
 
 def rocking_frame(alpha: float, p_column: float, mass_ratio: float, g: float = G,

@@ -193,12 +193,19 @@ def read_netcdf(path) -> xr.Dataset:
     path = Path(path)
     if not path.exists():
         raise ValueError(f"{path}: no such file")
+    if path.is_file():
+        with path.open("rb") as f:
+            head = f.read(8)
+        if not (head.startswith(b"CDF") or head == b"\x89HDF\r\n\x1a\n"):
+            raise ValueError(f"{path}: not a NetCDF file (rockarch writes them with --out "
+                             "FILE.nc or --save-site FILE.nc)")
     import xarray as xr
 
     try:
         ds = xr.load_dataset(path)
     except Exception as exc:  # noqa: BLE001 - any reader failure is a bad file for the user
-        raise ValueError(f"{path}: not a readable NetCDF file ({exc})") from None
+        why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ValueError(f"{path}: not a readable NetCDF file ({why[:160]})") from None
     if "overturned" in ds:
         ds["overturned"] = ds["overturned"].astype(bool)
     return ds
