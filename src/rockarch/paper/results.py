@@ -267,9 +267,11 @@ def sect9(out: Path, n_p: int = 100) -> dict:
     c = repl.equivalent  # the records' first collapses at its p, islands searched
     ida = fr.site_ida(motions, c.p, c.ap_min, ratio=site_ds["ratio"].values)
     res = design_check(arch, site_ds, rule="equivalent", repl=repl, ida=ida)
+    records = bundled_record_path(180).parent
+    if records.is_relative_to(Path.cwd()):  # a clone's own folder, as the docs quote it
+        records = records.relative_to(Path.cwd())
     cmd = ("rockarch design --shape circular --span 10 --rise 2.89 --thickness 0.35 "
-           f"--records {bundled_record_path(180).parent} --thickness-rule equivalent "
-           "--curve envelope")
+           f"--records {records}/ --thickness-rule equivalent --curve envelope")
     write_report(res, site_ds, out / "design_report.html", command=cmd,
                  site_path=str(out / "site.nc"),
                  inputs={"shape": "circular", "span [m]": 10.0, "rise [m]": 2.89,
