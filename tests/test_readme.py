@@ -94,9 +94,10 @@ def test_docs_demo_report_is_what_make_demo_writes(tmp_path):
     """docs/demo/report.md (linked from the README) is what `make demo` writes now; rebuild
     it with `.venv/bin/python examples/demo.py --out docs/demo`."""
     root = README.parent
+    # from the clone's root, as `make demo` runs it (the rerun command names the records
+    # by their path in the clone)
     subprocess.run([sys.executable, str(root / "examples" / "demo.py"), "--out",
-                    str(tmp_path)], check=True, capture_output=True, cwd=tmp_path,
-                   timeout=900)
+                    str(tmp_path)], check=True, capture_output=True, cwd=root, timeout=900)
     fresh = _normalised_report((tmp_path / "report.md").read_text(), str(tmp_path))
     kept = _normalised_report((root / "docs" / "demo" / "report.md").read_text(),
                               "docs/demo")
