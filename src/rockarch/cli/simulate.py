@@ -51,8 +51,9 @@ def _fourhinge_header(sysobj) -> str:
 
 def _frame_header(sysobj) -> str:
     mech = sysobj.mechanism
-    return (f"{mech.name}: p={mech.p:.4g} 1/s (Eq. 12), ap,min={mech.ap_min:.4g} m/s², "
-            f"e={mech.plus.e_close:.4f}")
+    return (f"{mech.name}: p={mech.p:.4g} 1/s (the frame's, from the columns' "
+            f"p={mech.info['p_column']:g} 1/s: docs/mechanism.md), ap,min={mech.ap_min:.4g} "
+            f"m/s², e={mech.plus.e_close:.4f}")
 
 
 def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -> None:
