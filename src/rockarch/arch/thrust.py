@@ -239,8 +239,9 @@ def _too_thin_message(v: Voussoirs) -> str:
         d = minimum_thickness(arch, blocks=v.n)
     except ValueError:
         return ("the arch cannot carry its own weight at any thickness this axis can hold")
+    t = arch.uniform_thickness
     return (f"the arch cannot carry its own weight: minimum thickness is {d:.6g} m "
-            f"(d/l = {d / arch.span:.6g}), given {arch.uniform_thickness:.6g} m")
+            f"(d/l = {d / arch.span:.6g}), given {t:.6g} m (d/l = {t / arch.span:.6g})")
 
 
 def minimum_thickness(arch: Arch, lambda_: float = 0.0, *, blocks: int | None = None,
