@@ -102,6 +102,13 @@ def test_site_legend_names_only_visible_curves():
     assert labels[-2:] == ["envelope", "50th percentile"]
     env, pct = ax.get_lines()[-2:]
     assert pct.get_zorder() > env.get_zorder() and pct.get_linestyle() == "--"
+    # where no record overturns within the ratio range the curves have no value: a marker
+    # at the range's top says so (the blank low-p band of a site was unexplained)
+    ds = ds.assign(envelope=("p", [np.nan, 1.1]), ratio=("ratio", [1.0, 5.0]))
+    ax = figures.plot_site(ds).axes[0]
+    mark = ax.get_lines()[-1]
+    assert mark.get_label() == "no record overturns up to ap/ap,min = 5"
+    assert list(mark.get_xdata()) == [1.0] and list(mark.get_ydata()) == [5.0]
 
 
 def test_one_stylesheet_and_escaped_tables():

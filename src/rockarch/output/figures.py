@@ -213,6 +213,12 @@ def plot_site(ds: xr.Dataset) -> Figure:
     else:  # the percentile drawn over the envelope, visible where they coincide
         ax.plot(p, env, "k-", lw=2, label="envelope")
         ax.plot(p, char, "--", color="C3", lw=1.4, label=pct, zorder=3)
+    safe = ~np.isfinite(env)  # no record overturns the block within the ratio range
+    if safe.any() and "ratio" in ds:
+        top = float(ds["ratio"].values[-1])
+        ax.plot(p[safe], np.full(int(safe.sum()), top), "^", color="0.3", ms=4,
+                label=f"no record overturns up to ap/ap,min = {top:g}")
+    ax.set_xlim(p[0], p[-1])
     ax.set_xlabel("frequency parameter p [1/s]")
     ax.set_ylabel("lowest overturning ap/ap,min [-]")
     ax.set_title(ds.attrs["title"], fontsize=9)
