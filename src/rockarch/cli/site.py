@@ -237,6 +237,10 @@ def design(
                           ratio=site_ds["ratio"].values)
     res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g, repl=repl,
                        ida=ida)
+    if not records:
+        echo_err("note: a site file holds each record's first collapse on its ratio grid; "
+                 "collapse islands narrower than the grid's step are not searched (with "
+                 "--records they are, at the arch's p: docs/design.md)")
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
