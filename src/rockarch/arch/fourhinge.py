@@ -317,7 +317,8 @@ class ArchMechanism:
         delta; delta_linear: linearised. u is the rotation of the end part on the side the
         arch falls towards: part 1 about H1 for direction +1, part 3 about H4 for −1 (the
         mirror image: a symmetric arch has the same p, delta, Bv, Bh and A both ways,
-        docs/theory.md Eq. 5.6). ``mechanism``'s own kinematics take part 1's rotation.
+        docs/theory.md Eq. 5.6). ``mechanism``'s own kinematics take part 1's rotation,
+        whose neutral value is ``delta_linkage`` (= delta for direction +1).
     delta_end, end_part : Table 1's delta: the rotation, at the neutral configuration, of the
         end part next to the extrados inner hinge (``end_part`` 1 = H1–H2 or 3 = H3–H4),
         docs/theory.md Eq. (5.4).
@@ -346,16 +347,11 @@ class ArchMechanism:
     delta_end: float = float("nan")
     end_part: int = 0
     c4_u: float = float("nan")
+    delta_linkage: float = float("nan")
 
     @property
     def hinges(self) -> tuple[Hinge, ...]:
         return self.thrust.hinges
-
-    @property
-    def delta_linkage(self) -> float:
-        """The neutral value of the linkage's own coordinate, part 1's rotation about H1
-        (``delta`` itself for direction +1; for −1 ``delta`` is on part 3, Eq. 5.6)."""
-        return self.delta if self.mechanism.direction > 0 else neutral_position(self.mechanism)
 
     def to_dict(self) -> dict:
         """The CLI's JSON contract (joint is None for the continuous mechanism).
@@ -448,6 +444,7 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
         dlin = neutral_position_linear(mech)
     except ValueError:
         dlin = float("nan")
+    u_neutral = delta
     if direction < 0:  # on the mirror image of side +'s coordinate (Eq. 5.6)
         bv, bh, a0, dlin, delta = _on_part3(mech, bv, bh, a0, dlin, delta)
     p = math.sqrt(bv / (a0 * delta))
@@ -464,11 +461,10 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
     else:
         c3, c3p = pos3, pos2
     end_part = 1 if h2.side == "extrados" else 3
-    delta_end = abs(float(kinematics(mech, neutral_position(mech) if direction < 0 else delta
-                                     ).phi[end_part - 1, 0]))
+    delta_end = abs(float(kinematics(mech, u_neutral).phi[end_part - 1, 0]))
     return ArchMechanism(
         thrust=res, mechanism=mech, continuous=blocks is None, ap_min=res.ap_min,
         lambda_=res.lambda_, ap_min_vw=g * bv / bh, Bv=bv, Bh=bh, A=a0, delta=delta,
         delta_linear=dlin, p=p, c1=g / (p * p * rise), c2=res.ap_min * rise**2 / (g * d * span),
         c3=c3, c3p=c3p, c4=d / (delta_end * span), delta_end=delta_end, end_part=end_part,
-        c4_u=d / (delta * span))
+        c4_u=d / (delta * span), delta_linkage=u_neutral)
