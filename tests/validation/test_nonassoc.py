@@ -12,6 +12,7 @@ from rockarch.arch import catenary
 from rockarch.core.constants import G
 from rockarch.mdof import builders as bd
 from rockarch.mdof import nonassoc, statics
+from rockarch.mdof.linkage import corner_velocity
 
 # HiGHS solves to ~1e-9 relative (primal/dual feasibility 1e-7 on forces of order 1).
 LP_TOL = 1e-7
@@ -44,6 +45,24 @@ def test_converged_state_is_coulomb_admissible_and_slides_without_dilatancy():
     k = int(np.flatnonzero(np.abs(a.normal[:, 0]) > 0.5)[0])  # the vertical face
     assert c.sliding[k] and c.opening[k].any()
     assert c.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)
+
+
+@pytest.mark.parametrize("direction", [1, -1])
+def test_a_wall_that_slides_at_once_slides_without_lifting(direction):
+    # 4 x 3 running-bond wall, mu = 0.6 everywhere: every bed joint reaches the cone at
+    # lambda = mu, so the associative state is already a fixed point of (10.6)-(10.8); its
+    # LP mechanism is the cone's flow (the wall lifts at v/u = mu), the returned one must
+    # slide without opening where the joint carries load (Coulomb, no dilatancy)
+    a = mdof.wall(4, 3, 0.4, 0.2, mu=0.6)
+    c = statics.collapse(a, direction=direction)
+    assert c.converged and c.ap_min == pytest.approx(0.6 * G, rel=LP_TOL)  # lambda = mu
+    assert c.sliding.any()
+    rel = corner_velocity(c.velocity, a.centroid, a.corners, a.body_b) - corner_velocity(
+        c.velocity, a.centroid, a.corners, a.body_a)
+    vn = np.einsum("kcd,kd->kc", rel, a.normal)
+    loaded = c.normal_force > 1e-6 * float(a.mass.sum())
+    # the mechanism is normalised to a largest speed of 1: 1e-9 is HiGHS's dual accuracy
+    assert np.abs(vn[loaded & c.sliding[:, None]]).max() < 1e-9
 
 
 BESIDE = {"blocks": [{"polygon": [[0, 0], [0.4, 0], [0.4, 1], [0, 1]], "name": "block"}],

@@ -76,7 +76,7 @@ class Collapse:
         λ of its iterates, and a RuntimeWarning was issued).
     iterations : int
         Tresca LPs of the non-associative iteration (0: associative LP only, or its state
-        was already a fixed point).
+        was already a fixed point and its mechanism does not slide).
     """
 
     ap_min: float
@@ -309,7 +309,11 @@ def _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, *, g: f
                              "at joints without normal force (non-associative friction, "
                              "docs/theory.md §10)")
         start = state.lambda_
-        if not (out.converged and out.iterations == 1):  # else: LP state is a fixed point
+        # the LP's state is kept where it is a fixed point of the iteration and its
+        # mechanism does not slide; a sliding one is the cone's dilatant flow, and the
+        # Tresca LP's mechanism at that fixed point slides without opening (Eq. 10.6)
+        if not (out.converged and out.iterations == 1
+                and not _mechanism(state.duals, *geom)[2].any()):
             state, converged, iterations = out.state, out.converged, out.iterations
         # macro-blocks below the converged solution; without one, below the associative
         # bound (an unconverged iterate is no solution: a wedge that is one wins)
