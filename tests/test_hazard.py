@@ -93,6 +93,22 @@ def test_real_looking_curve_against_an_independent_quadrature():
     assert res.shares[j] == pytest.approx(part / res.annual_rate, rel=1e-5)
 
 
+@pytest.mark.parametrize("median", [1.7728510609765913, 0.25 * G_STANDARD])
+def test_density_is_the_integrand_without_rounding_spikes(median):
+    # the plotted density of lambda_c per unit ln x is P(x)·|dH/d ln x| (Eq. 11.41); the
+    # first median put a grid point within 1e-16 of another, and that step's density was
+    # rounding noise twice the curve's height, taken as the largest contribution
+    curve = hz.read_hazard(TWO_COLUMN)
+    frag = hz.fragility_curve("pga", median, 0.46986004970112377)
+    res = hz.collapse_rate(curve, frag)
+    inner = (res.im_grid > curve.x[0]) & (res.im_grid < curve.x[-1])
+    x = res.im_grid[inner]
+    exact = frag.probability(x) * -curve.rate_at(x) * curve_slope(curve, x)
+    # a midpoint step of beta/200 (and <= 1/COARSE_PER_LN outside): 1 % with margin
+    assert np.allclose(res.density[inner], exact, rtol=0.01, atol=1e-3 * exact.max())
+    assert res.mode == pytest.approx(x[np.argmax(exact)], rel=0.01)
+
+
 def curve_slope(curve, x):
     """d ln H / d ln x of the log-log interpolation at x (inside an interval)."""
     k = np.searchsorted(curve.x, x) - 1
