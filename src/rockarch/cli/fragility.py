@@ -258,3 +258,6 @@ def _print_table(frag: fr.Fragility) -> None:
         typer.echo(f"{lvl:g} % bootstrap interval ({ci['n']} resamples): median "
                    f"{ci['median'][0]:.4g} … {ci['median'][1]:.4g}, beta "
                    f"{ci['beta'][0]:.3f} … {ci['beta'][1]:.3f}")
+    elif len(r.records) < fr.MIN_BOOTSTRAP_RECORDS:
+        typer.echo(f"no bootstrap interval with {len(r.records)} records (the only resample "
+                   "that can be fitted is the sample itself): give more records")

@@ -61,6 +61,10 @@ IM_LABELS = {"pga": "PGA", "pgv": "PGV", "sa": "Sa(T)", "pga_norm": "PGA/(g tan 
              "pgv_norm": "PGV*p/(g tan a)"}
 #: Bootstrap resamples of the confidence band unless told otherwise.
 N_BOOTSTRAP = 500
+#: Fewest records of a bootstrap band: of two records' resamples only the pair itself has
+#: two different collapse points to fit, and every fitted resample is the sample (a band of
+#: zero width).
+MIN_BOOTSTRAP_RECORDS = 3
 #: Most bootstrap resamples (each refits the lognormal: ~1 ms).
 MAX_BOOTSTRAP = 10_000
 
@@ -494,8 +498,9 @@ class Fragility:
 def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float = 0.95,
             im_grid=None, seed: int = 0,
             hint: str = "raise the scan limit, e.g. --ratio-max 10") -> Fragility:
-    """Lognormal fit (censored records included) and bootstrap band of an IDA; ``hint``:
-    what to do when fewer than two records collapse (:class:`TooFewCollapses`)."""
+    """Lognormal fit (censored records included) and bootstrap band of an IDA (none with
+    fewer than :data:`MIN_BOOTSTRAP_RECORDS` records); ``hint``: what to do when fewer than
+    two records collapse (:class:`TooFewCollapses`)."""
     x = result.im_collapse[~result.censored]
     c = result.im_limit[result.censored]
     if np.unique(x).size < 2:
@@ -505,7 +510,8 @@ def fit_ida(result: IDAResult, *, n_bootstrap: int = N_BOOTSTRAP, level: float =
                               f"ap/ap,min = {result.ratio[-1]:g}: a fragility needs at least "
                               f"two different collapse points ({hint})")
     fit = fit_lognormal(x, c)
-    ci = {} if n_bootstrap == 0 else bootstrap(x, c, n=n_bootstrap, level=level,
+    few = len(result.records) < MIN_BOOTSTRAP_RECORDS
+    ci = {} if n_bootstrap == 0 or few else bootstrap(x, c, n=n_bootstrap, level=level,
                                                im_grid=im_grid, seed=seed)
     return Fragility(result, fit, ci)
 
