@@ -187,8 +187,9 @@ def test_the_default_scan_follows_the_structure():
 
 
 def test_an_assembly_is_searched_below_a_collapse_only():
-    # MDOF (costly): the search of Eq. (11.30a) every 0.05 below the grid's first collapse,
-    # one value per thread at a time; a record safe on the whole grid is not searched
+    # MDOF (costly): the search of Eq. (11.30a) below the grid's first collapse, every
+    # 0.0025 for one block (as the block's own IDA), one value per thread at a time; a
+    # record safe on the whole grid is not searched
     col = ra.system("mdof", column=[(0.2, 0.6)], t_free=0.5)
     calls: list[int] = []
 
@@ -203,7 +204,7 @@ def test_an_assembly_is_searched_below_a_collapse_only():
     # 6 collapses, a scan every 0.1 with bisection): 1.1 is safe with an 18 % margin, 5 far
     # inside the collapse region, so both verdicts hold on any machine
     res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 1.1], tol=0.05)
-    assert res.search_step == 0.05 and res.censored.all() and calls == [2]
+    assert res.search_step == 0.0025 and res.censored.all() and calls == [2]
     calls.clear()
     res = fr.ida(cnt, [m], float(col.p_ref), ratio=[1.0, 5.0], tol=0.05)
     grid_only = fr.ida(col, [m], float(col.p_ref), ratio=[1.0, 5.0], tol=0.05,
@@ -215,6 +216,17 @@ def test_an_assembly_is_searched_below_a_collapse_only():
 
     assert len(calls) > 1 and max(calls[1:]) <= max(numba.get_num_threads(), 1)
     assert res.ratio_collapse[0] <= grid_only.ratio_collapse[0]
+
+
+def test_one_block_in_the_contact_engine_is_searched_as_the_block():
+    # one block: the block's own search step; several blocks cost 0.1-5 s a simulation:
+    # the block grid's 0.05
+    from rockarch.risk.record_scan import default_search_step
+
+    tri = ra.system("mdof", colonnade=2, block=[0.3, 2.0], bay=1.0, lintel=0.4)
+    assert default_search_step(tri) == 0.05
+    assert default_search_step(ra.system("mdof", column=[(0.3, 1.5)])) == 0.0025
+    assert default_search_step(ra.system("block", p=2.0, alpha=0.2)) == 0.0025
 
 
 def test_likelihood_gradient_matches_finite_differences():

@@ -197,6 +197,24 @@ def test_design_cli_records_any_system(folder, tmp_path):
     assert f"{out['pga_safe']:.3f} m/s²" in html and "SHA-256" in html
 
 
+def test_design_cli_search_step(folder):
+    # --search-step reaches the IDA (stated in the scan line and the JSON); the search only
+    # adds collapses below the grid's, so the safe PGA never rises with it
+    args = ["design", "--system", "block", "--alpha", "0.2", "--p", "2", "--records",
+            str(folder), "--no-store", "--bootstrap", "0", "--json"]
+    outs = {}
+    for step in ("0", "0.01"):
+        res = runner.invoke(app, [*args, "--search-step", step])
+        assert res.exit_code == 0, res.output
+        outs[step] = json.loads(res.stdout)
+        assert outs[step]["scan"]["search_step"] == float(step)
+    assert outs["0.01"]["pga_safe"] <= outs["0"]["pga_safe"]
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                              "2.89", "--thickness", "0.35", "--records", str(folder),
+                              "--search-step", "0.01"])
+    assert res.exit_code == 2 and "--search-step goes with --system" in res.output
+
+
 def test_design_cli_fourhinge_with_a_site_file(block_site, tmp_path):
     """The arch's own four-hinge mechanism as the equivalent SDOF (no replacement)."""
     f = tmp_path / "site.nc"

@@ -168,7 +168,8 @@ class SystemDesign:
             out["ap_min_no_sliding"] = self.ap_min_no_sliding
         if self.fragility is not None:
             frag = self.fragility.to_dict()
-            out["points"], out["scan"] = frag["points"], frag["scan"]
+            out["points"] = frag["points"]
+            out["scan"] = {**frag["scan"], "search_step": frag["search_step"]}
             out["fragility"] = self.summary
         return out
 

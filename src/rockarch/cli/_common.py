@@ -245,8 +245,8 @@ TOL_OPT = typer.Option(OAS_TOL, help="Bisection tolerance of the boundary (ratio
 #: The IDA scan's options (fragility, risk, design --system --records): the defaults
 #: follow the structure (rockarch.risk.record_scan.default_scan).
 IDA_STEPS_OPT = typer.Option(None, help="IDA scan values of ap/ap,min from 1 (default 81; "
-                             "17 for mdof, whose simulations cost seconds: collapse islands "
-                             "narrower than its step 0.25 may be missed, docs/mdof.md).")
+                             "17 for mdof, whose simulations cost seconds, searched below its "
+                             "first collapse every --search-step, docs/mdof.md).")
 IDA_TOL_OPT = typer.Option(None, help="Bisection tolerance of each record's collapse point "
                            "(ratio; default 0.001, 0.01 for mdof); 0 turns it off.")
 

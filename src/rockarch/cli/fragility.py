@@ -32,8 +32,9 @@ Im = Enum("Im", {v: v for v in (*fr.IMS, "all")}, type=str)
 #: --search-step's help (fragility and design).
 SEARCH_HELP = (f"Search for collapse islands narrower than the grid below its first collapse, "
                f"every STEP of ap/ap,min from 1 (the first collapse is the lowest found). "
-               f"Default {SEARCH_STEP:g} for block, frame, sdof and fourhinge, "
-               f"{MDOF_SEARCH_STEP:g} for mdof (below a collapse of the grid only); 0: off.")
+               f"Default {SEARCH_STEP:g} for block, frame, sdof, fourhinge and a single "
+               f"mdof block, {MDOF_SEARCH_STEP:g} for mdof assemblies of several blocks "
+               f"(below a collapse of the grid only); 0: off.")
 
 #: From this many records the IDA runs on local processes unless told otherwise: each
 #: record is one task (its scan and bisection), records in parallel across processes

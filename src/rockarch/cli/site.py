@@ -40,7 +40,7 @@ from rockarch.cli._groups import (
     system_of,
 )
 from rockarch.cli._sweep import open_sweep
-from rockarch.cli.fragility import _print_table, ida_scan, ida_sweep_options
+from rockarch.cli.fragility import SEARCH_HELP, _print_table, ida_scan, ida_sweep_options
 from rockarch.cli.risk import RISK, check_years, hazard_of
 from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system, site_risk, smallest_thickness
@@ -144,7 +144,9 @@ def design(
     ratio_max: float = typer.Option(None, help="--system with --records: IDA scan limit "
                                     "ap/ap,min (default 5); records safe up to it are "
                                     "censored."),
-    ratio_steps: int = IDA_STEPS_OPT, tol: float = IDA_TOL_OPT, t_free: float = TFREE_OPT,
+    ratio_steps: int = IDA_STEPS_OPT, tol: float = IDA_TOL_OPT,
+    search_step: float = typer.Option(None, help="--system with --records: " + SEARCH_HELP),
+    t_free: float = TFREE_OPT,
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="--system with --records: bootstrap "
                                   "resamples of the fragility's interval (0: none)."),
     site_file: Path = typer.Option(None, "--site", help="Site OAS file (rockarch site-oas)."),
@@ -309,7 +311,8 @@ def design(
 
 
 #: design options that need --records (a --site file holds its own curves).
-_RECORDS_ONLY = ("pga", "probability", "percentile", "units", "ratio_max", "save_site")
+_RECORDS_ONLY = ("pga", "probability", "percentile", "units", "ratio_max", "save_site",
+                 "search_step")
 
 
 def _check_design_inputs(opt: dict, records: list[Path]) -> None:
@@ -322,6 +325,9 @@ def _check_design_inputs(opt: dict, records: list[Path]) -> None:
         if extra:
             raise ValueError(f"--{extra[0].replace('_', '-')} goes with --records (a --site "
                              "file holds its own curves)")
+    if opt["search_step"] is not None and opt["system"] is None:
+        raise ValueError("--search-step goes with --system (the arch's replacement block is "
+                         "searched every 0.0025, as the site OAS's)")
     if opt["pga"] is not None:
         positive("--pga [m/s²]", opt["pga"])
     if opt["probability"] is not None:
@@ -423,7 +429,8 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
         with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
                         echo=echo_err) as (executor, chunk_store):
             res = design_system(sysobj, records=suite, ratio=ratios, tol=tol,
-                                n_bootstrap=opt["bootstrap"], executor=executor,
+                                search_step=opt["search_step"], n_bootstrap=opt["bootstrap"],
+                                executor=executor,
                                 store=chunk_store, progress=sys.stderr.isatty(),
                                 log=stage_echo(), **kw)
     for msg in (res.note,) if res.note else ():

@@ -39,9 +39,12 @@ SCAN_STEPS = 81
 #: assembly costs seconds, and a record that never collapses runs every value to its end
 #: (docs/mdof.md, "The IDA scan of assemblies").
 MDOF_SCAN = (17, 0.01)
-#: The search step of MDOF assemblies: that of the block's grid (0.05), run below a
-#: collapse of their coarser grid only (Eq. (11.30a)), so that their collapse points are
-#: those of the 81-value scan (docs/mdof.md measures it).
+#: The largest search step of MDOF assemblies: that of the block's grid (0.05), run below
+#: a collapse of their coarser grid only (Eq. (11.30a)), so that their collapse points are
+#: at least those of the 81-value scan (docs/mdof.md measures it). A single block in the
+#: contact engine (~40 ms a simulation of a 30 s record) is searched every SEARCH_STEP, as
+#: the block's own IDA is; two blocks with friction already cost ~0.3 s a simulation, and
+#: a search every 0.005 took 2 min on the two bundled records.
 MDOF_SEARCH_STEP = 0.05
 
 
@@ -75,9 +78,12 @@ def check_search_step(step) -> float:
 
 def default_search_step(system) -> float:
     """:data:`SEARCH_STEP` for systems simulated by an SDOF kernel (block, frame, sdof,
-    fourhinge: ~0.2 ms a simulation), :data:`MDOF_SEARCH_STEP` for MDOF assemblies (~1 s a
-    simulation; searched below a collapse only, :class:`RecordScan`)."""
-    return MDOF_SEARCH_STEP if costly(system) else SEARCH_STEP
+    fourhinge: ~0.2 ms a simulation) and for a single block in the contact engine;
+    :data:`MDOF_SEARCH_STEP` for MDOF assemblies of several blocks (~0.1–5 s a simulation;
+    searched below a collapse only, :class:`RecordScan`)."""
+    if costly(system) and len(system.assembly.mass) > 1:
+        return MDOF_SEARCH_STEP
+    return SEARCH_STEP
 
 
 def check_island_step(step) -> int:
