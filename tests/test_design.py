@@ -118,7 +118,7 @@ def test_design_cli_contract_and_offline_report(site_file, tmp_path):
                               "--json", "--report", str(rep)])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
-    assert set(out) == {"replacement", "ratio", "pga_safe", "pga_safe_g"}
+    assert set(out) == {"replacement", "ratio", "pga_safe", "pga_safe_g", "caveats"}
     assert {"thickness", "span", "rise", "p", "ap_min", "rule", "thickness_over_span",
             "thickness_over_original_span"} <= set(out["replacement"])
     assert out["replacement"]["rule"] == "equivalent"
@@ -129,6 +129,10 @@ def test_design_cli_contract_and_offline_report(site_file, tmp_path):
     assert not re.search(r'(src|href)\s*=\s*"(https?:|//)', html)
     assert html.count('src="data:image/png;base64,') == 2
     assert "rockarch design --shape circular" in html and "SHA-256" in html
+    # a site file's first collapses are on its grid: the report says what was not searched
+    assert "islands narrower than the grid" in out["caveats"][0]
+    assert "does not collapse holds within these caveats" in html
+    assert "islands narrower than the grid" in html
 
 
 def test_site_oas_cli(tmp_path):
@@ -199,3 +203,16 @@ def test_design_cli_lower_bound_is_the_band(site_file):
     assert r["thickness_over_span"] == pytest.approx(r["thickness"] / r["span"], rel=1e-12)
     assert r["thickness_over_original_span"] == pytest.approx(r["thickness"] / 10, rel=1e-12)
     assert r["ap_min"] == pytest.approx(TABLE2["lower-bound"]["ap_min"], rel=0.01)
+
+
+def test_a_fitted_curve_read_above_records_collapses_is_flagged():
+    # normalised and simplified curves are fits over p: where records' first collapses at
+    # the replacement's p lie below their reading, the design says so (stderr, JSON, report)
+    from types import SimpleNamespace
+
+    from rockarch.cli.site import _design_caveats
+
+    ida = SimpleNamespace(ratio_collapse=np.array([1.1, 1.3, np.nan]), records=("a", "b", "c"))
+    out = _design_caveats(SimpleNamespace(ratio=1.2), ida, "normalised")
+    assert len(out) == 1 and out[0].startswith("1 of 3 records") and "at 1.1000" in out[0]
+    assert _design_caveats(SimpleNamespace(ratio=1.05), ida, "normalised") == []

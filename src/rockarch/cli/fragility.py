@@ -224,13 +224,16 @@ def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
         return
     typer.echo(f"dispersion of each IM on one IDA: {res.system} at p = {res.p:g} 1/s over "
                f"{len(res.records)} records ({int(res.censored.sum())} censored)")
-    lvl = f"{100 * level:g} % interval of beta" if bootstrap else ""
+    has_ci = any(r["ci"].get("beta") for r in rows)
+    lvl = f"{100 * level:g} % interval of beta" if has_ci else ""
     typer.echo(f"{'IM':<24} {'units':>5} {'median':>9} {'beta':>6}  {lvl}".rstrip())
     for r in rows:
         name = r["label"] if "period" not in r else f"Sa(T = {r['period']:.3g} s)"
         ci = r["ci"].get("beta")
         typer.echo(f"{name:<24} {r['units']:>5} {r['median']:>9.4g} {r['beta']:>6.3f}"
                    + (f"  {ci[0]:.3f} … {ci[1]:.3f}" if ci else ""))
+    if bootstrap and not has_ci and len(res.records) < fr.MIN_BOOTSTRAP_RECORDS:
+        typer.echo(f"no bootstrap interval with {len(res.records)} records: give more records")
     best = min(rows, key=lambda r: r["beta"])
     typer.echo(f"lowest beta: {best['label']} (the dimensionless IMs are PGA and PGV times "
                "constants here: the same beta)")

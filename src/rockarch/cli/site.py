@@ -6,6 +6,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import typer
 
 from rockarch.arch.geometry import make_arch
@@ -239,14 +240,11 @@ def design(
                           ratio=site_ds["ratio"].values)
     res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g, repl=repl,
                        ida=ida)
-    if not records:
-        echo_err("note: a site file holds each record's first collapse on its ratio grid; "
-                 "collapse islands narrower than the grid's step are not searched (with "
-                 "--records they are, at the arch's p: docs/design.md)")
+    caveats = _design_caveats(res, ida, curve)
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
-    extra, html_extra = {}, ""
+    extra, html_extra = ({"caveats": caveats} if caveats else {}), ""
     if records:
         try:
             frag = fr.fit_ida(ida, hint=fr.SITE_HINT)
@@ -283,6 +281,7 @@ def design(
         from rockarch.output.report import write_report
         write_report(res, site_ds, report, command=cmd,
                      site_path=str(site_file) if site_file else None, extra_html=html_extra,
+                     caveats=caveats,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
                              "thickness [m]": thickness})
     if json_out:
@@ -477,6 +476,26 @@ def _command_line(opt: dict) -> str:
         for item in v if isinstance(v, (list, tuple)) else [v]:
             words += [prm.opts[0], str(getattr(item, "value", item))]
     return " ".join(shlex.quote(w) for w in words)
+
+
+def _design_caveats(res, ida, curve: str) -> list[str]:
+    """What an arch's design did not search or bound, each said once on stderr (and given
+    to the report): a site file's islands; a fitted curve read above records' collapses."""
+    if ida is None:
+        out = ["a site file holds each record's first collapse on its ratio grid; collapse "
+               "islands narrower than the grid's step are not searched (with --records they "
+               "are, at the arch's p: docs/design.md)"]
+    else:
+        first = ida.ratio_collapse[np.isfinite(ida.ratio_collapse)]
+        below = first[first < res.ratio]
+        out = [] if not below.size else [
+            f"{below.size} of {len(ida.records)} records first collapse the replacement's "
+            f"block below the {curve} curve's ap/ap,min = {res.ratio:.4f} (the lowest at "
+            f"{below.min():.4f}): that curve is a prediction fitted over p, not a bound "
+            f"(--curve envelope reads the records' first collapses)"]
+    for c in out:
+        echo_err(f"note: {c}" if ida is None else f"warning: {c}")
+    return out
 
 
 def _safe_pga(res, g: float) -> str:

@@ -19,6 +19,7 @@ body { font-family: sans-serif; max-width: 70em; margin: 2em auto; padding: 0 1e
 table { border-collapse: collapse; margin: 0.6em 0; font-size: 0.9em; }
 th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: left; }
 .result { font-size: 1.25em; background: #eef5ee; padding: 0.8em; border: 1px solid #9c9; }
+.result .caveat { font-size: 0.8em; color: #8a4b00; margin: 0.4em 0 0 0; }
 img { max-width: 100%; }
 code { font-size: 0.85em; }
 """

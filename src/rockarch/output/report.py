@@ -4,6 +4,7 @@ PNG, no external resources, so it opens offline and can be archived with the pro
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -78,10 +79,11 @@ def _inputs_table(result: DesignResult, site_ds: xr.Dataset, inputs: dict,
 
 
 def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inputs: dict,
-                site_path: str | None = None, extra_html: str = "") -> str:
+                site_path: str | None = None, extra_html: str = "",
+                caveats: Sequence[str] = ()) -> str:
     """The report as one HTML page; ``command`` reruns the check, ``inputs`` lists the
     arch's parameters; ``extra_html`` (e.g. the fragility of a suite) follows the site
-    OAS."""
+    OAS; ``caveats`` (what the check did not search or bound) follow the result."""
     c = result.chosen
     rep = result.replacement
     g = result.g
@@ -109,7 +111,9 @@ Method: paper Sect. 9 (replacement catenary arch, slender-block OAS of the site)
 <b>{result.pga_safe:.3f} m/s² = {result.pga_safe / g:.3f} g</b><br>
 ap/ap,min = {result.ratio:.4f}{lower} {islands}at
 p = {c.p:.4f} 1/s; ap,min = {c.ap_min:.4f} m/s² ({result.rule} thickness).
-Below this PGA the arch may move but does not collapse.</div>
+{"Below this PGA the arch may move but does not collapse." if not caveats else
+ "Below this PGA the arch may move; that it does not collapse holds within these caveats:"}
+{"".join(f'<p class="caveat">{escape(c)}</p>' for c in caveats)}</div>
 <h2>Arch and replacement catenary arch</h2>
 {inline_figure(design_arch_figure(result), "arch")}
 <p>Original arch: critical optimal four-hinge mechanism ap,min = {rep.original.ap_min:.4f} m/s²
@@ -132,10 +136,12 @@ l′ is the replacement's own span, l the arch's.</p>
 
 
 def write_report(result: DesignResult, site_ds: xr.Dataset, path, *, command: str,
-                 inputs: dict, site_path: str | None = None, extra_html: str = "") -> Path:
+                 inputs: dict, site_path: str | None = None, extra_html: str = "",
+                 caveats: Sequence[str] = ()) -> Path:
     """Write the HTML report atomically (see :func:`report_html`)."""
     return write_text(path, report_html(result, site_ds, command=command, inputs=inputs,
-                                        site_path=site_path, extra_html=extra_html))
+                                        site_path=site_path, extra_html=extra_html,
+                                        caveats=caveats))
 
 
 #: What the design of any structure assumes, per method (docs/theory.md §11.4).
