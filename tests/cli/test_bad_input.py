@@ -64,6 +64,9 @@ BAD_ASSEMBLIES = {
     "empty.json": b"",
     "huge.json": b'{"blocks": [{"polygon": [[0, 0], [1e300, 0], [1e300, 1e300], [0, 1e300]]}]}',
     "nan.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, NaN], [0, 2]]}]}',
+    # a density of 1e100 failed deep in the statics ("bad operand type for abs()")
+    "density1e100.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]], '
+                         b'"density": 1e100}]}',
     # 3000 stacked blocks: refused by the block limit before any statics
     "blocks3000.json": json.dumps({"blocks": [
         {"polygon": [[0, k / 10], [0.4, k / 10], [0.4, (k + 1) / 10], [0, (k + 1) / 10]]}
@@ -413,6 +416,7 @@ def _issue22_cases(add) -> None:
     add("mdof-friction=1e-300", mdof_col + ["--column", "0.4,1", "--friction", "1e-300"])
     add("block-g=1e308", _sub(block, g="1e308"))
     add("block-ratio=1e300", _sub(block, ratio="1e300"))
+    add("block-ratio=0", _sub(block, ratio="0"))  # no ground motion: (0, 1e6]
     add("oas-ratio-max=1e300", _sub(OAS, ratio_min="0", ratio_max="1e300"))
     add("oas-tol=1e-300", _sub(OAS, tol="1e-300"))  # ~1000 bisection rounds: a hang
     add("mdof-column-empty-block", mdof_col + ["--column", "0.4,1;;0.3,0.5"])

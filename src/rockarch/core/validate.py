@@ -118,8 +118,9 @@ def tolerance(name: str, value) -> float:
 
 
 def ratio_value(name: str, value) -> float:
-    """A ratio ap/ap,min in [0, :data:`RATIO_MAX`] (TypeError for a non-number)."""
-    return in_range(name, value, 0.0, RATIO_MAX)
+    """A ratio ap/ap,min in (0, :data:`RATIO_MAX`] (TypeError for a non-number): 0 is no
+    ground motion at all."""
+    return in_range(name, value, 0.0, RATIO_MAX, lo_open=True)
 
 
 def in_range(name: str, value: float, lo: float, hi: float, *, lo_open: bool = False,

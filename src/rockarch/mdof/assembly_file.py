@@ -40,6 +40,9 @@ MAX_BYTES_PER_BLOCK = 20_000
 #: assembly file's coordinates are probably not in metres, and reading it warns.
 PLAUSIBLE_SIZE = (1e-3, 1e3)
 
+#: Densities a file may give (kg/m³ or any unit: only their ratios matter); outside, the
+#: masses would leave the range of the contact solver's regularisation and tolerances.
+DENSITY_RANGE = (1e-6, 1e6)
 _TOP = {"name", "friction", "blocks", "supports", "contacts"}
 _BLOCK = {"polygon", "density", "name"}
 _CONTACT = {"blocks", "friction"}
@@ -78,6 +81,10 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
     for i, d in enumerate(dens):
         if isinstance(d, bool) or not isinstance(d, (int, float)):
             raise ValueError(f"{source}: density of {names[i]} must be a number, got {d!r}")
+        if not (math.isfinite(d) and DENSITY_RANGE[0] <= d <= DENSITY_RANGE[1]):
+            raise ValueError(f"{source}: density of {names[i]} must lie in "
+                             f"[{DENSITY_RANGE[0]:g}, {DENSITY_RANGE[1]:g}] (kg/m³, or any "
+                             f"unit: only ratios of densities matter), got {d!r}")
     default = data.get("friction") if mu is None else mu
     if default is not None:
         default = friction_value(default)
