@@ -64,6 +64,15 @@ BAD_ASSEMBLIES = {
     "empty.json": b"",
     "huge.json": b'{"blocks": [{"polygon": [[0, 0], [1e300, 0], [1e300, 1e300], [0, 1e300]]}]}',
     "nan.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, NaN], [0, 2]]}]}',
+    # a support below the ground, two overlapping supports, a contact given twice: each
+    # gave a block a second joint on one face (the dynamics changed, nothing said)
+    "support_below.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]}], '
+                          b'"supports": [[[0, -1], [1, -1], [1, 0], [0, 0]]]}',
+    "supports_overlap.json": b'{"blocks": [{"polygon": [[0, 1], [1, 1], [1, 2], [0, 2]]}], '
+                             b'"supports": [[[0, 0], [1, 0], [1, 1], [0, 1]], '
+                             b'[[0.5, 0], [1.5, 0], [1.5, 1], [0.5, 1]]]}',
+    "contact_twice.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]}], '
+                          b'"contacts": [{"blocks": [-1, 0]}, {"blocks": [0, -1]}]}',
     # a density of 1e100 failed deep in the statics ("bad operand type for abs()")
     "density1e100.json": b'{"blocks": [{"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]], '
                          b'"density": 1e100}]}',

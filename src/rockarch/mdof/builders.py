@@ -163,9 +163,11 @@ def _check_overlaps(polys, supports, names, tol):
     label = names + [f"support {k}" for k in range(len(supports))]
     lo = np.array([p.min(axis=0) for p in allp])
     hi = np.array([p.max(axis=0) for p in allp])
-    for i in range(nb_):
+    for i in range(len(allp)):  # supports too: one below the ground or two overlapping
+        # gave a block a second joint on the same face (the ground's and the support's)
         if lo[i, 1] < -tol:
-            raise ValueError(f"{names[i]} reaches below the ground (y = {lo[i, 1]:g} < 0)")
+            raise ValueError(f"{label[i]} reaches below the ground (y = {lo[i, 1]:g} < 0)"
+                             + ("; supports stand on the ground" if i >= nb_ else ""))
         for j in range(i + 1, len(allp)):
             if np.all(lo[i] < hi[j] - tol) and np.all(lo[j] < hi[i] - tol) \
                     and pg.overlap_depth(allp[i], allp[j]) > tol:
@@ -222,9 +224,13 @@ def from_polygons(polygons, *, density=1.0, mu=None, contacts=None, supports=(),
             if f is not None:
                 joints.append((-1, i, *f, None))
     else:
-        joints = []
+        joints, seen = [], set()
         for c in contacts:
             i, j, m = int(c[0]), int(c[1]), c[2]
+            if (min(i, j), max(i, j)) in seen:
+                raise ValueError(f"contact {i}-{j} is given twice (one joint per pair of "
+                                 "faces)")
+            seen.add((min(i, j), max(i, j)))
             for k in (i, j):
                 if not -1 <= k < nb_:
                     raise ValueError(f"contact {i}-{j}: no block {k} (blocks 0..{nb_ - 1}, "
