@@ -177,6 +177,13 @@ def test_records_synth_writes_a_suite_that_records_info_reads(tmp_path):
         assert rec.station == m.name and rec.event == "Synthetic RDK08 seed 5"
     params = (out / sy.PARAMETERS_FILE).read_text().splitlines()
     assert params[0].startswith("file,arias,d5_95") and len(params) == 4
+    # the same command again rewrites the same files; fewer records, or another seed,
+    # would leave records of the first run in the suite: refused
+    again = ["records", "synth", str(out), "--seed", "5", "--n"]
+    assert CliRunner().invoke(app, [*again, "3"]).exit_code == 0
+    res = CliRunner().invoke(app, [*again, "2"])
+    assert res.exit_code == 2 and "already holds 1 other record file" in res.stderr
+    assert len(ra.read_suite(out).names) == 3
     (tmp_path / "f").write_text("a file in the way")
     res = CliRunner().invoke(app, ["records", "synth", str(tmp_path / "f" / "b")])
     assert res.exit_code == 2 and "is a file" in res.stderr

@@ -554,9 +554,18 @@ def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
     :data:`PARAMETERS_FILE`. Returns the record paths."""
     from pathlib import Path
 
-
     directory = Path(directory)
     check_output_dir(directory)
+    if directory.is_dir():  # a suite is a folder: others' records would join it unseen
+        from rockarch.motion.suite import _is_record_file
+
+        ours = {f"rdk-s{seed}-{k:03d}.AT2" for k in range(int(n))}
+        other = sorted(q.name for q in directory.iterdir()
+                       if q.is_file() and _is_record_file(q) and q.name not in ours)
+        if other:
+            raise ValueError(f"{directory} already holds {len(other)} other record file(s) "
+                             f"(e.g. {other[0]}), which a suite read from it would include: "
+                             "give a new or empty folder")
     # the arguments and the first record first: a bad n, dt or pulse fraction leaves no
     # folder behind; then one record at a time in memory
     motions = iter_synthetic(n, seed, dt=dt, f_corner=f_corner, pulse_fraction=pulse_fraction)
