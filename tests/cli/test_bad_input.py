@@ -325,6 +325,11 @@ def _cases():
     # --- fragility, records, cache
     frag = ["fragility", "--system", "block", "--alpha", "0.1", "--p", "2", "--records",
             REC, "--im", "pga", "--no-progress"]
+    # .AT2 files state their units (g): another --units is refused for suites as for one
+    # --record (site-oas and records info accepted it silently)
+    add("fragility-units-on-AT2", frag + ["--units", "cm/s2"])
+    add("site-oas-units-on-AT2", SITE + ["--units", "m/s2"])
+    add("records-info-units-on-AT2", ["records", "info", REC, "--units", "cm/s2"])
     for opt, v in (("im", "bogus"), ("p", "0"), ("p", "1e300"), ("alpha", "0"),
                    ("records", "{tmp}/none/"), ("records", "{files}/nan.txt"),
                    ("records", "{files}/binary.AT2"), ("level", "2"), ("bootstrap", "-1"),

@@ -213,9 +213,25 @@ def _progress_line(msg: str) -> None:
     echo_err(f"progress: {msg}")
 
 
+def check_suite_units(sources, units: str | None) -> None:
+    """--units sets the units of two-column files; where every record of ``sources`` states
+    its own (.AT2 in g, ESM, K-NET, COSMOS) another unit is refused, as with --record."""
+    if units is None:
+        return
+    from rockarch.motion.suite import TWO_COLUMN_SUFFIXES, record_files
+
+    files = record_files(sources)[0]
+    if files and not any(f.suffix.lower() in TWO_COLUMN_SUFFIXES for f in files):
+        if not (units == "g" and all(f.suffix.lower() == ".at2" for f in files)):
+            raise ValueError(f"--units {units}: these records state their own units (.AT2 "
+                             "in g, ESM, K-NET, COSMOS); --units is for two-column files "
+                             "(leave it out)")
+
+
 def read_records(sources, units: str | None) -> Suite:
     """The suite of --records, its notes (records left out, implausible PGAs: wrong units?)
-    printed as warnings on stderr."""
+    printed as warnings on stderr (--units as :func:`check_suite_units`)."""
+    check_suite_units(sources, units)
     suite = read_suite(sources, units=units)
     for note in suite.notes:
         echo_err(f"warning: {note}")

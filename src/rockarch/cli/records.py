@@ -8,7 +8,7 @@ from pathlib import Path
 import typer
 
 from rockarch.cli._app import app
-from rockarch.cli._common import JSON_OPT, float_list, guarded, print_json
+from rockarch.cli._common import JSON_OPT, check_suite_units, float_list, guarded, print_json
 from rockarch.core.constants import G_STANDARD
 from rockarch.motion import intensity, synthetic
 from rockarch.motion.suite import describe, read_suite
@@ -54,6 +54,7 @@ def info(
     per = float_list("--periods", periods)
     method = check_method(pulse_method)
     check_outputs((plot, "--plot", "png"))
+    check_suite_units(sources, units)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
                        search_results=search_results, vertical=vertical)
     rows = describe(suite, per, damping, method)

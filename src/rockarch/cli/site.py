@@ -20,6 +20,7 @@ from rockarch.cli._common import (
     TFREE_OPT,
     TOL_OPT,
     System,
+    check_suite_units,
     echo_err,
     guarded,
     mdof_structure,
@@ -87,6 +88,7 @@ def site_oas(
         opts["alpha"] = site_mod.ALPHA
     sysobj = system_of(opts)
     check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
+    check_suite_units(paths, units)
     motions, hashes = site_mod.load_records(paths, units,
                                             log=lambda note: echo_err(f"warning: {note}"))
     ps = p_grid(None, p_min, p_max, p_steps)
