@@ -454,6 +454,10 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
             arch = _arch(shape, span, rise, thickness, rise_over_span, thickness_over_span,
                          kind)
             _need(kind, blocks=blocks)
+            if span is None and (pier_height is not None or pier_width is not None):
+                raise ValueError("--pier-height and --pier-width are in metres: give the "
+                                 "arch in metres too (--span --rise --thickness), not as "
+                                 "ratios of a span of 1")
         else:
             other = next(k for k, v in (("column", column), ("wall", wall),
                                         ("colonnade", colonnade), ("assembly", assembly))

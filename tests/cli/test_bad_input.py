@@ -434,6 +434,17 @@ def _issue22_cases(add) -> None:
     add("oas-ratio-max=1e300", _sub(OAS, ratio_min="0", ratio_max="1e300"))
     add("oas-tol=1e-300", _sub(OAS, tol="1e-300"))  # ~1000 bisection rounds: a hang
     add("mdof-column-empty-block", mdof_col + ["--column", "0.4,1;;0.3,0.5"])
+    # pier options that were ignored (one span between abutments) or read in metres
+    # beside an arch of span 1 (f/l, d/l)
+    arch10 = ["--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness", "0.35",
+              "--blocks", "10"]
+    add("mdof-one-span-abutments", mdof_col + arch10 + [
+        "--spans", "1", "--abutments", "--pier-height", "3", "--pier-width", "1.5"])
+    add("oas-mdof-piers-beside-ratios", ["oas", "--system", "mdof", "--shape", "catenary",
+                                         "--rise-over-span", "0.3", "--thickness-over-span",
+                                         "0.025", "--blocks", "10", "--spans", "2",
+                                         "--pier-height", "3", "--pier-width", "1", "--signal",
+                                         "sine", "--period", "1", "--p", "3", "--no-store"])
     add("mdof-column=0.3-plain-numbers", mdof_col + ["--column", "0.3"])
     # late checks: refused before the IDA
     des = ["design", "--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness",

@@ -352,6 +352,10 @@ def bridge(arch: Arch, n_voussoirs: int, *, spans: int = 1, pier_height: float,
     """
     spans = _count("--spans", spans, 1)
     abut = spans > 1 if abutments is None else bool(abutments)
+    if abut and spans == 1:  # the piers' sizes would be ignored, yet named in the title
+        raise ValueError("one span between abutments has no pier: give the arch alone "
+                         "(without --spans, --pier-height, --pier-width, --abutments), or "
+                         "--spans 2 or more")
     hp, bp = positive("--pier-height", pier_height), positive("--pier-width", pier_width)
     n_piers = spans + 1 - 2 * abut
     per_pier = _count("pier blocks", pier_blocks, 1) if pier_blocks is not None else \
