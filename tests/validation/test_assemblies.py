@@ -259,6 +259,10 @@ def test_json_assembly_in_millimetres_warns():
         a = assembly_from_dict({"blocks": mm})
     # still read as given (ap,min is scale-free, p is not)
     assert a.ap_min == pytest.approx(assembly_from_dict({"blocks": blocks}).ap_min, rel=1e-9)
+    # a small object in millimetres is of plausible extent (500 m) but its block is not
+    vase = [{"polygon": _rect(0, 0, 200, 500)}]
+    with pytest.warns(UnitsWarning, match="a block is 500 m long"):
+        assembly_from_dict({"blocks": vase})
 
 
 @pytest.mark.parametrize("k, hint", [(1000.0, "millimetres"), (1e-4, "kilometres")])

@@ -27,6 +27,8 @@ import math
 import warnings
 from pathlib import Path
 
+import numpy as np
+
 from rockarch.core import limits
 from rockarch.core.constants import G
 from rockarch.mdof.assembly import Assembly
@@ -39,6 +41,9 @@ MAX_BYTES_PER_BLOCK = 20_000
 #: Extent [m] of a plausible structure (a laboratory model to a viaduct): outside it an
 #: assembly file's coordinates are probably not in metres, and reading it warns.
 PLAUSIBLE_SIZE = (1e-3, 1e3)
+#: Largest plausible single block [m] (the tallest monolithic obelisks are ~30 m): a larger
+#: one is most likely a block given in millimetres, in a structure of plausible extent.
+PLAUSIBLE_BLOCK = 50.0
 
 #: Densities a file may give (kg/m³ or any unit: only their ratios matter); outside, the
 #: masses would leave the range of the contact solver's regularisation and tolerances.
@@ -109,11 +114,16 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
     name = str(data.get("name", source))
     out = from_polygons(polys, density=dens, mu=default, contacts=contacts,
                         supports=supports, names=names, g=g, name=name, kind="assembly")
+    largest = max(float(np.ptp(np.asarray(q, float), axis=0).max()) for q in polys)
     if not PLAUSIBLE_SIZE[0] <= out.size <= PLAUSIBLE_SIZE[1]:
         warnings.warn(UnitsWarning(
             f"{source}: the structure is {out.size:.4g} m across: coordinates are in metres "
             + ("(millimetres? divide them by 1000)" if out.size > PLAUSIBLE_SIZE[1] else
                "(kilometres? multiply them by 1000)")), stacklevel=2)
+    elif largest > PLAUSIBLE_BLOCK:
+        warnings.warn(UnitsWarning(
+            f"{source}: a block is {largest:.4g} m long: coordinates are in metres "
+            "(millimetres? divide them by 1000)"), stacklevel=2)
     return out
 
 
