@@ -226,8 +226,22 @@ def test_site_oas_flags_a_record_given_twice(tmp_path):
     _one_line_error([*base, "--records", str(rec.parent), str(rec)],
                     contains="the same record is given twice")
     _one_line_error([*base, "--records", str(rec), str(copy)],
-                    contains=f"{copy.name}: the same record as {rec.name} (identical samples)")
+                    contains=f"{copy.name}: the same record as {rec.name} (the same samples")
     assert not (tmp_path / "s.nc").exists()
+    # the same record as a two-column file in m/s² (no --units: read as m/s², as it is):
+    # refused by site-oas and by fragility, which took both before
+    import numpy as np
+
+    from rockarch.motion.records import read_record
+
+    m = read_record(rec)
+    txt = tmp_path / "elcentro_ms2.txt"
+    np.savetxt(txt, np.c_[m.t, m.a])
+    _one_line_error([*base, "--records", str(rec), str(txt)],
+                    contains=f"{txt.name}: the same record as {rec.name} (the same samples")
+    _one_line_error(["fragility", "--alpha", "0.1", "--p", "3", "--records", str(rec),
+                     str(txt), "--no-store"],
+                    contains=f"{txt.name}: the same record as {rec.name} (the same samples")
 
 
 @pytest.mark.slow  # ~4-6 s: a sweep, then the import of distributed and a 1 s probe

@@ -23,7 +23,7 @@ from rockarch.core.sweep import check_steps, default_store_dir
 from rockarch.core.validate import frequency, ratio_value
 from rockarch.motion.records import read_record
 from rockarch.motion.signals import SIGNALS, GroundMotion, pulse
-from rockarch.motion.suite import Suite, read_suite
+from rockarch.motion.suite import Suite, check_distinct, read_suite
 from rockarch.systems import KINDS
 
 
@@ -233,6 +233,7 @@ def read_records(sources, units: str | None) -> Suite:
     printed as warnings on stderr (--units as :func:`check_suite_units`)."""
     check_suite_units(sources, units)
     suite = read_suite(sources, units=units)
+    check_distinct(suite)
     for note in suite.notes:
         echo_err(f"warning: {note}")
     return suite

@@ -98,6 +98,16 @@ class GroundMotion:
         h.update(np.ascontiguousarray(self.a).tobytes())
         return h.hexdigest()
 
+    def shape_fingerprint(self) -> str:
+        """SHA-256 of the time axis and of the samples over the PGA to 6 decimals: the same
+        record whatever its units or scale (a suite scales every record to its own PGA)."""
+        h = hashlib.sha256()
+        h.update(np.ascontiguousarray(np.round(self.t, 9)).tobytes())
+        pga = float(np.max(np.abs(self.a)))
+        h.update(np.ascontiguousarray(np.round(self.a / pga, 6) + 0.0).tobytes()
+                 if pga > 0 else b"")
+        return h.hexdigest()
+
 
 def _smooth(ap: float, period: float, duration: float, func, name: str, n=None) -> GroundMotion:
     if n is None:

@@ -186,6 +186,19 @@ def _is_record_file(p: Path) -> bool:
                                 *COSMOS_SUFFIXES)
 
 
+def check_distinct(suite) -> None:
+    """ValueError if two records of ``suite`` are one record (the same samples up to units or
+    scale, :meth:`GroundMotion.shape_fingerprint`): a suite scales every record to its own
+    PGA, so a record given twice would count twice in a site's percentile or a fragility."""
+    seen: dict = {}
+    for rec in suite:
+        first = seen.setdefault(rec.motion.shape_fingerprint(), rec.name)
+        if first != rec.name:  # names: two channels of one COSMOS file share its path
+            raise ValueError(f"{rec.name}: the same record as {first} (the same samples, "
+                             "up to units or scale); a suite counts each record once: "
+                             "leave one out")
+
+
 def _bundled_hint() -> str:
     """Where the bundled El Centro records are, for an error about a missing path."""
     folder = bundled_record_path().parent

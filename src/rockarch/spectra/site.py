@@ -24,7 +24,7 @@ from rockarch.core.console import on_terminal
 from rockarch.core.constants import G_STANDARD, OAS_TOL
 from rockarch.core.sweep.limits import check_simulations
 from rockarch.motion.signals import GroundMotion
-from rockarch.motion.suite import PGA_RANGE, read_suite, record_files
+from rockarch.motion.suite import PGA_RANGE, check_distinct, read_suite, record_files
 from rockarch.spectra import oas as spectra
 
 if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
@@ -55,17 +55,14 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
     names: it would count twice in the percentile). ``log`` receives the suite's notes (a
     record left out, ...)."""
 
-    motions, hashes, seen = [], [], {}
+    motions, hashes = [], []
     suite = read_suite(paths, units=units)
     if log is not None:
         for note in suite.notes:
             log(note)
+    check_distinct(suite)
     for rec in suite:
         path, m = Path(rec.path), rec.motion
-        first = seen.setdefault(m.fingerprint(), rec.name)
-        if first != rec.name:  # names: two channels of one COSMOS file share its path
-            raise ValueError(f"{rec.name}: the same record as {first} (identical samples); a "
-                             "site counts each record once: leave one out")
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
             raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
