@@ -77,13 +77,14 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
     typer.echo(header)
     typer.echo(f"motion: {mot.name}, PGA={mot.pga:.4g} m/s² = {ratio:g} ap,min")
     if s["overturned"]:
-        typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after {s['impacts']} impacts")
+        typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after "
+                   f"{_count(s['impacts'], 'impact')}")
     else:
         beyond = ("; rotated past the reference angle yet not collapsed: the collapse test "
                   "decides (docs/mdof.md, Collapse criterion)"
                   if s["max_rotation_ratio"] >= 1.0 else "")
         typer.echo(f"safe: max rotation / its overturning value = "
-                   f"{s['max_rotation_ratio']:.4f}, {s['impacts']} impacts{beyond}")
+                   f"{s['max_rotation_ratio']:.4f}, {_count(s['impacts'], 'impact')}{beyond}")
     if s.get("sliding_contacts_max") and s["max_slip"] < SLIP_NOISE:
         typer.echo(f"sliding: none beyond {1e6 * SLIP_NOISE:g} µm (largest slip "
                    f"{s['max_slip']:.2g} m: the contact solve's tolerance, not a slide)")
@@ -195,10 +196,15 @@ def _mdof_system(opts: dict, t_free: float, g: float):
                        **structure)
 
 
+def _count(n: int, word: str) -> str:
+    """'1 block', '2 blocks'."""
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
+
 def _mdof_header(a) -> str:
     fr = "" if a.frictionless else f", friction {np.min(a.mu):g}" + (
         "" if np.ptp(a.mu) == 0 else f"..{np.max(a.mu):g}")
-    return (f"{a.name}: {a.n_blocks} blocks, {a.n_joints} joints{fr}, "
+    return (f"{a.name}: {_count(a.n_blocks, 'block')}, {_count(a.n_joints, 'joint')}{fr}, "
             f"ap,min={a.ap_min:.4g} m/s², p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad "
             "(Moreau–Jean, docs/mdof.md)")
 
@@ -263,7 +269,8 @@ def simulate_mdof(
         typer.echo(f"wrote {mechanism}")
 
 
-@app.command(short_help="GIF of an MDOF arch or column in motion.")
+@app.command(short_help="GIF of an MDOF structure (arch, bridge, wall, column, blocks) in "
+             "motion.")
 @guarded
 @options(MDOF, MOTION + RATIO, MDOF_STEP, before="t_free")
 def animate(
