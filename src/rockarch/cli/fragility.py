@@ -233,7 +233,7 @@ def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
         typer.echo(f"{name:<24} {r['units']:>5} {r['median']:>9.4g} {r['beta']:>6.3f}"
                    + (f"  {ci[0]:.3f} … {ci[1]:.3f}" if ci else ""))
     if bootstrap and not has_ci and len(res.records) < fr.MIN_BOOTSTRAP_RECORDS:
-        typer.echo(f"no bootstrap interval with {len(res.records)} records: give more records")
+        typer.echo(_no_band(len(res.records)))
     best = min(rows, key=lambda r: r["beta"])
     typer.echo(f"lowest beta: {best['label']} (the dimensionless IMs are PGA and PGV times "
                "constants here: the same beta)")
@@ -263,5 +263,10 @@ def _print_table(frag: fr.Fragility) -> None:
                    f"{ci['median'][0]:.4g} … {ci['median'][1]:.4g}, beta "
                    f"{ci['beta'][0]:.3f} … {ci['beta'][1]:.3f}")
     elif len(r.records) < fr.MIN_BOOTSTRAP_RECORDS:
-        typer.echo(f"no bootstrap interval with {len(r.records)} records (the only resample "
-                   "that can be fitted is the sample itself): give more records")
+        typer.echo(_no_band(len(r.records)))
+
+
+def _no_band(n: int) -> str:
+    """Why a suite of fewer than MIN_BOOTSTRAP_RECORDS records has no bootstrap interval."""
+    return (f"no bootstrap interval with {n} records (the only resample that can be fitted "
+            "is the sample itself): give more records")

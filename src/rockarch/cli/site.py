@@ -48,6 +48,7 @@ from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system, site_risk, smallest_thickness
 from rockarch.output import check_outputs, staged
 from rockarch.risk import fragility as fr
+from rockarch.risk.record_scan import SEARCH_STEP
 from rockarch.spectra import characteristic as charsite
 from rockarch.spectra import site as site_mod
 from rockarch.spectra.characteristic import characteristic
@@ -327,8 +328,8 @@ def _check_design_inputs(opt: dict, records: list[Path]) -> None:
             raise ValueError(f"--{extra[0].replace('_', '-')} goes with --records (a --site "
                              "file holds its own curves)")
     if opt["search_step"] is not None and opt["system"] is None:
-        raise ValueError("--search-step goes with --system (the arch's replacement block is "
-                         "searched every 0.0025, as the site OAS's)")
+        raise ValueError(f"--search-step goes with --system (the arch's replacement block "
+                         f"is searched every {SEARCH_STEP:g})")
     if opt["pga"] is not None:
         positive("--pga [m/s²]", opt["pga"])
     if opt["probability"] is not None:

@@ -497,6 +497,11 @@ def _suite_args(n, seed, dt, f_corner, pulse_fraction) -> tuple:
     return n, seed, dt, f_corner, in_range("pulse fraction", pulse_fraction, 0.0, 1.0)
 
 
+def record_name(seed: int, k: int) -> str:
+    """The name of the k-th synthetic record of ``seed`` (its .AT2 file's stem)."""
+    return f"rdk-s{seed}-{k:03d}"
+
+
 def iter_synthetic(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F_CORNER,
                    pulse_fraction: float = 0.0):
     """The records of :func:`synthetic_motions`, drawn one at a time (a suite written to
@@ -505,7 +510,7 @@ def iter_synthetic(n: int, seed: int = 0, *, dt: float = DT, f_corner: float = F
     for k, child in enumerate(np.random.SeedSequence(seed).spawn(n)):
         rng = np.random.default_rng(child)
         params = draw_parameters(rng, f_max=0.25 / dt)  # generate's limit on f_mid
-        m = generate(params, rng, dt=dt, f_corner=f_corner, name=f"rdk-s{seed}-{k:03d}")
+        m = generate(params, rng, dt=dt, f_corner=f_corner, name=record_name(seed, k))
         if rng.uniform() < fraction:
             m = add_pulse(m, draw_pulse(rng, m, params.t_mid))
         yield m
@@ -559,7 +564,7 @@ def write_suite(directory, n: int, seed: int = 0, *, dt: float = DT,
     if directory.is_dir():  # a suite is a folder: others' records would join it unseen
         from rockarch.motion.suite import _is_record_file
 
-        ours = {f"rdk-s{seed}-{k:03d}.AT2" for k in range(int(n))}
+        ours = {f"{record_name(seed, k)}.AT2" for k in range(int(n))}
         other = sorted(q.name for q in directory.iterdir()
                        if q.is_file() and _is_record_file(q) and q.name not in ours)
         if other:
