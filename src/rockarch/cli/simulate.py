@@ -76,6 +76,16 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
         return
     typer.echo(header)
     typer.echo(f"motion: {mot.name}, PGA={mot.pga:.4g} m/s² = {ratio:g} ap,min")
+    _verdict(s)
+    stride = getattr(resp, "stride", 1)
+    if stride > 1:  # docs/theory.md Eq. (8.6): the verdict above is exact
+        typer.echo(f"history: every {stride}th step kept (ROCKARCH_MAX_SAMPLES)")
+    if plot is not None:
+        typer.echo(f"wrote {plot}")
+
+
+def _verdict(s: dict) -> None:
+    """Print the verdict lines of a response's summary ``s`` (its ``to_dict()``)."""
     if s["overturned"]:
         typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after "
                    f"{_count(s['impacts'], 'impact')}")
@@ -97,11 +107,6 @@ def _run(sysobj, header: str, opts: dict, extra: dict | None = None, **sim_kw) -
     if s.get("lcp_failures"):
         typer.echo(f"note: {s['lcp_failures']} of {s['steps']} steps not solved to the contact "
                    "solver's tolerance, even as substeps (docs/theory.md §9)")
-    stride = getattr(resp, "stride", 1)
-    if stride > 1:  # docs/theory.md Eq. (8.6): the verdict above is exact
-        typer.echo(f"history: every {stride}th step kept (ROCKARCH_MAX_SAMPLES)")
-    if plot is not None:
-        typer.echo(f"wrote {plot}")
 
 
 def _step_note(half: dict) -> str:
@@ -307,4 +312,8 @@ def animate(
         print_json({**resp.to_dict(), "out": str(out)})
         return
     typer.echo(_mdof_header(sysobj.assembly))
+    typer.echo(f"motion: {motion.name}, PGA={motion.pga:.4g} m/s² = {opts['ratio']:g} ap,min")
+    _verdict(resp.to_dict())
+    if resp.overturned:
+        typer.echo(f"the fall after the collapse is animated until t = {resp.t_end:.2f} s")
     typer.echo(f"wrote {out}")

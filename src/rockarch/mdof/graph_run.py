@@ -150,7 +150,9 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     by ``scale`` (lengths) on amp·a(t) [m/s²]; ``through``: go on after a collapse (until
     rest or t_end) instead of stopping there. Returns (status, t_collapse,
     max_rot_over_delta, impacts, open_max, n_rec, steps, failures, max_slip, sliding_max,
-    most new contacts carrying an impulse at once, steps skipped at rest).
+    most new contacts carrying an impulse at once, steps skipped at rest); after a
+    collapse, the five from max_rot_over_delta to sliding_max are those reached at the
+    collapse, also when ``through`` follows the fall (the other four cover the whole run).
 
     A step whose contact problem does not settle (docs/theory.md §9) runs again as
     ``REFINE`` substeps warm-started from its last proximal iterate; ``failures`` counts the
@@ -198,6 +200,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
     # compile those kernels once more for the literal while it types the loop
     impacts, open_max, n_rec = np.int64(0), np.int64(0), np.int64(0)
     slide_max, max_slip, points_max = 0, 0.0, 0
+    at_col = (mx, impacts, open_max, max_slip, np.int64(slide_max))
     t, step, i_prev = 0.0, np.int64(0), 0.0
     n_steps = int(math.ceil(t_end / h))
     next_search, v_search, next_rest, rest_wait = 0, 0.0, 0, 1
@@ -301,6 +304,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
         if status == 0 and (rho > 0.5 * math.pi or (can_slide and _fallen(m, gmid))):
             status = 1
             t_col = t
+            at_col = (mx, impacts, open_max, max_slip, slide_max)
             if not through:
                 break
         if sub > 0:  # the rest of this step's substeps
@@ -318,6 +322,7 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             if kin.moves_away(mass, ws.ii, x, y, ph, cx0, cy0, tvx, tvy, tom):
                 status = 1
                 t_col = t
+                at_col = (mx, impacts, open_max, max_slip, slide_max)
                 if not through:
                     break
         if t >= t_motion and n_open == 0 and n_sl == 0:
@@ -362,6 +367,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
             next_search = step
             if t >= t_motion and n_open == 0:
                 break
+    if status == 1:  # the summary of the first collapse, also when followed through
+        mx, impacts, open_max, max_slip, slide_max = at_col
     return (status, t_col, mx, impacts, open_max, n_rec, step, fails, max_slip, slide_max,
             points_max, skipped)
 

@@ -235,9 +235,12 @@ def simulate(assembly: Assembly, motion: GroundMotion | None, *, p: float | None
     ``record_every``: record every k-th step (raised when the history would exceed
     :data:`rockarch.core.limits.MAX_HISTORY_BYTES`). ``through_collapse``: follow the blocks
     after a collapse (falling, landing, coming to rest) until rest or the end of the free
-    motion (on the general stepper, whose new contacts let them land); the verdict and
-    ``t_overturn`` are those of the first collapse. ``check_step``: run the history again
-    at h/2 (its verdict only, no history kept) and report it in ``h_half`` and
+    motion (on the general stepper, whose new contacts let them land); the verdict,
+    ``t_overturn``, ``max_rotation_ratio``, ``impacts``, ``open_joints_max``, ``max_slip``
+    and ``sliding_contacts_max`` are those of the first collapse, as without it (the
+    history, ``t_end``, ``steps`` and ``new_contacts_max`` include the fall).
+    ``check_step``: run the history again at h/2 (its verdict only, no history kept) and
+    report it in ``h_half`` and
     ``step_sensitive`` (:data:`STEP_CHECK_ROTATION`): a chaotic history may change its
     verdict with the step while maps and suites do not (docs/mdof.md, "Convergence on
     records"). ``skip_rest`` False solves every step of the general stepper, also those
