@@ -211,3 +211,19 @@ def test_sweeps_take_the_time_step(tmp_path):
                               "2.89", "--thickness", "0.35", "--site", "none.nc",
                               "--h-factor", "0.0025"])
     assert res.exit_code == 2 and "--h-factor" in res.output
+
+
+def test_header_says_when_the_collapse_mechanism_slides():
+    # a 0.4 x 1 m block with mu = 0.15 slides at 0.15 g, below its rocking 0.4 g: p and delta
+    # in the header are those of rocking, and the header says so (before: printed beside the
+    # sliding ap,min as if they were its mechanism's)
+    from rockarch.cli.simulate import _mdof_header
+    from rockarch.core.constants import G
+    from rockarch.mdof import builders as bd
+    from rockarch.mdof.assembly import column
+
+    slides = _mdof_header(bd.with_friction(column([(0.4, 1.0)]), 0.15))
+    assert f"ap,min={0.15 * G:.4g} m/s², its collapse mechanism slides; rocking alone " \
+           f"from {0.4 * G:.4g} m/s², p=" in slides
+    rocks = _mdof_header(bd.with_friction(column([(0.4, 1.0)]), 0.6))
+    assert f"ap,min={0.4 * G:.4g} m/s², p=" in rocks and "slides" not in rocks

@@ -209,9 +209,12 @@ def _count(n: int, word: str) -> str:
 def _mdof_header(a) -> str:
     fr = "" if a.frictionless else f", friction {np.min(a.mu):g}" + (
         "" if np.ptp(a.mu) == 0 else f"..{np.max(a.mu):g}")
+    rock = a.info.get("ap_min_no_sliding", a.ap_min)
+    ref = (f"p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad" if a.ap_min >= rock * (1 - 1e-9)
+           else f"its collapse mechanism slides; rocking alone from {rock:.4g} m/s², "
+                f"p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad")
     return (f"{a.name}: {_count(a.n_blocks, 'block')}, {_count(a.n_joints, 'joint')}{fr}, "
-            f"ap,min={a.ap_min:.4g} m/s², p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad "
-            "(Moreau–Jean, docs/mdof.md)")
+            f"ap,min={a.ap_min:.4g} m/s², {ref} (Moreau–Jean, docs/mdof.md)")
 
 
 def _with_ramp(a, header: str, extra: dict) -> tuple[str, dict]:
