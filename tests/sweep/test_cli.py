@@ -141,15 +141,16 @@ def test_ctrl_c_is_one_line_without_leak_warnings(tmp_path, pool):
             "--p-steps", "96", "--ratio-steps", "41", "--no-progress", "--store", str(store),
             *pool]
     # Ctrl-C reaches the command even where pytest itself runs with SIGINT ignored (a
-    # background job of a non-interactive shell): a terminal's child would have it
+    # background job of a non-interactive shell): a terminal's child would have it. A
+    # terminal sends it to the whole process group, the workers too: a session of its own
     proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=_default_sigint)
+                            preexec_fn=_default_sigint, start_new_session=True)
     deadline = time.monotonic() + 240
     while not list(store.rglob("*.npz")):  # interrupt once the workers run
         assert proc.poll() is None, proc.stderr.read()
         assert time.monotonic() < deadline
         time.sleep(0.02)
-    proc.send_signal(signal.SIGINT)
+    os.killpg(proc.pid, signal.SIGINT)
     out, err = proc.communicate(timeout=60)
     assert proc.returncode == 130 and out == ""
     assert err in ("", "error: interrupted\n")  # typer exits 130 quietly on Ctrl-C

@@ -4,13 +4,19 @@
 from __future__ import annotations
 
 import contextlib
+import logging
 import os
 import re
 from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from rockarch.core.sweep.workers import _deferred_sigint, _worker_init, run_chunk
+from rockarch.core.sweep.workers import (
+    _deferred_sigint,
+    _ignore_sigint,
+    _worker_init,
+    run_chunk,
+)
 
 #: Executor modes.
 MODES = ("serial", "processes", "dask")
@@ -215,8 +221,6 @@ class Executor:
     def _ensure_client(self):
         if self._client is not None:
             return self._client
-        import logging
-
         from distributed import Client, LocalCluster
 
         if self.scheduler is not None:
@@ -232,6 +236,7 @@ class Executor:
                 silence_logs=logging.ERROR,
                 scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
             self._client = Client(self._cluster)
+            self._client.run(_ignore_sigint)
         return self._client
 
     # -- running
@@ -310,6 +315,13 @@ class Executor:
         try:
             for f, res in as_completed(futs, with_results=True):
                 done(index[f.key], res)
+        except KeyboardInterrupt:
+            # Ctrl-C: what distributed logs as the cluster is stopped early (lost scattered
+            # data, a callback interrupted in its event loop) is not news to the user
+            for name in ("distributed", "tornado"):
+                logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+            client.cancel(futs)
+            raise
         except BaseException:
             client.cancel(futs)
             raise

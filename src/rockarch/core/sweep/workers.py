@@ -66,6 +66,13 @@ def _alive(pid: int) -> bool:
         return True
 
 
+def _ignore_sigint() -> None:
+    """In a worker process of a LocalCluster that a sweep started (run by ``Client.run``
+    in its main thread): Ctrl-C at the terminal reaches the whole process group; the
+    sweep's own process handles it and stops the cluster, as for the process pool."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _worker_init(parent: int) -> None:
     """Local worker process: numba on one thread (the pool supplies the parallelism); the
     parent handles Ctrl-C; and the worker exits once the parent is gone (after ``kill -9``
