@@ -249,3 +249,31 @@ def test_records_info_plot(folder, tmp_path):
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     res = runner.invoke(app, ["records", "info", one, "--plot", str(tmp_path / "no" / "x.png")])
     assert res.exit_code == 2 and "directory does not exist" in res.stderr
+
+
+def test_functions_over_records_take_a_suite_and_refuse_files_by_name():
+    # site_oas, ida, design_system ... take what ra.read_suite returns (before: site_oas and
+    # ida failed 11 frames deep with "'SuiteRecord' object has no attribute 'normalized'"),
+    # a list of motions or one motion; a path is a TypeError that says to read it first
+    from rockarch import systems
+    from rockarch.design import design_system
+    from rockarch.risk import fragility as fr
+
+    path = str(bundled_record_path(180))
+    s = suite.read_suite([path])
+    grid = {"p": [2.0], "ratio": np.linspace(1.0, 3.0, 3), "progress": False}
+    by_suite = site.site_oas(s, **grid)
+    for same in (s.motions, s.motions[0]):
+        np.testing.assert_array_equal(site.site_oas(same, **grid)["boundary"],
+                                      by_suite["boundary"])
+    block = systems.BlockSystem(alpha=0.2)
+    res = fr.ida(block, s, 2.0, ratio=[1.0, 2.0], search_step=0)
+    assert res.records == tuple(s.names)  # a suite's names: its file names
+    assert design_system(block, records=s, p=2.0, ratio=[1.0, 2.0], search_step=0,
+                         n_bootstrap=0).ratio > 0
+    for call in (lambda x: site.site_oas(x, **grid), lambda x: fr.ida(block, x, 2.0),
+                 lambda x: design_system(block, records=x, p=2.0)):
+        with pytest.raises(TypeError, match="got str: read the files first"):
+            call([path])
+        with pytest.raises(TypeError, match="got SuiteRecord: a Suite's records are in"):
+            call(list(s))

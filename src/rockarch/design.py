@@ -20,7 +20,6 @@ inverse, Eqs. 11.36–11.42).
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -31,7 +30,7 @@ from rockarch.arch.geometry import Arch
 from rockarch.arch.replacement import RULES, Replacement, replacement
 from rockarch.core.constants import G
 from rockarch.core.validate import in_range, integer, positive
-from rockarch.motion.signals import GroundMotion
+from rockarch.motion.suite import as_motions
 from rockarch.risk import fragility as fr
 from rockarch.risk import hazard as hz
 from rockarch.spectra import site as site_mod
@@ -229,11 +228,8 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     if site is not None and not isinstance(site, xr.Dataset):
         raise TypeError(f"site must be a site OAS (xarray.Dataset of rockarch.spectra.site."
                         f"load), got {type(site).__name__}")
-    if records is not None and (isinstance(records, (str, bytes, os.PathLike))
-                                or not all(isinstance(m, GroundMotion)
-                                           for m in getattr(records, "motions", records))):
-        raise TypeError("records must be a Suite (ra.read_suite) or a list of GroundMotion, "
-                        f"got {type(records).__name__}")
+    if records is not None:
+        motions, names = as_motions(records, names)
     if curve not in SYSTEM_CURVES:
         raise ValueError(f"the site curve of a structure's design must be one of "
                          f"{', '.join(SYSTEM_CURVES)}, got {curve!r}")
@@ -264,8 +260,6 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
                             pga_safe=r * ap_min,
                             percentile=float(site.attrs.get("percentile", 50.0)),
                             **common)
-    names = getattr(records, "names", names)
-    motions = getattr(records, "motions", records)
     res = fr.ida(system, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
                  store=store, progress=progress, log=log, search_step=search_step)
     env, char = site_mod.curves(res.ratio_collapse, percentile)

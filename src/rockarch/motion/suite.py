@@ -176,6 +176,31 @@ def from_motions(motions: Sequence[GroundMotion], names: Sequence[str] | None = 
                                                                        strict=True)))
 
 
+def as_motions(records, names=None, what: str = "records"
+               ) -> tuple[tuple[GroundMotion, ...], tuple[str, ...] | None]:
+    """(motions, names) of the records a function takes: a :class:`Suite` (its motions,
+    and its names unless ``names`` are given), a sequence of :class:`GroundMotion`, or one
+    GroundMotion. TypeError for anything else, files included (read them first)."""
+    if isinstance(records, GroundMotion):
+        records = [records]
+    if isinstance(records, Suite):
+        return tuple(records.motions), tuple(records.names if names is None else names)
+    bad = None
+    if isinstance(records, (str, bytes, os.PathLike)) or not hasattr(records, "__iter__"):
+        bad = records
+    else:
+        records = tuple(records)
+        bad = next((m for m in records if not isinstance(m, GroundMotion)), None)
+    if bad is not None:
+        hint = (": read the files first, ra.read_suite(paths)"
+                if isinstance(bad, (str, bytes, os.PathLike)) else
+                ": a Suite's records are in suite.motions" if isinstance(bad, SuiteRecord)
+                else "")
+        raise TypeError(f"{what} must be a Suite (ra.read_suite) or a list of GroundMotion,"
+                        f" got {type(bad).__name__}{hint}")
+    return records, None if names is None else tuple(names)
+
+
 # --- files and folders ------------------------------------------------------------------------
 
 def _is_record_file(p: Path) -> bool:

@@ -37,6 +37,7 @@ from rockarch.core.constants import OAS_TOL, G
 from rockarch.core.validate import in_range, show, tolerance
 from rockarch.motion.intensity import im_value
 from rockarch.motion.signals import GroundMotion
+from rockarch.motion.suite import as_motions
 from rockarch.risk.record_scan import (
     RecordScan,
     TaskBar,
@@ -188,7 +189,8 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     Parameters
     ----------
     system : a system of :func:`rockarch.systems.system` (any kind).
-    motions : the records (their shapes are scaled to PGA = ratio·ap,min).
+    motions : the records, a :class:`rockarch.motion.suite.Suite` (named by its file names)
+        or GroundMotions (their shapes are scaled to PGA = ratio·ap,min).
     p : frequency parameter [1/s] (the structure's size).
     names : record names (default the motions' names).
     im, period : intensity measure (:data:`IMS`; ``sa`` at ``period`` [s]).
@@ -210,7 +212,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
     log : called with a line per stage (the structure and the scan, when the IDA starts;
         each record, when it is done), e.g. ``print`` where no progress bar is shown.
     """
-    motions = tuple(motions)
+    motions, names = as_motions(motions, names, "motions")
     if not motions:
         raise ValueError("an IDA needs at least one record")
     p = float(p)
@@ -268,7 +270,7 @@ def with_im(result: IDAResult, motions: Sequence[GroundMotion], im: str,
             period: float | None = None) -> IDAResult:
     """The same IDA (same collapse ratios, Eq. (11.30)) in another intensity measure:
     every IM of :data:`IMS` is linear in the record's scale, Eq. (11.30b)."""
-    motions = tuple(motions)
+    motions, _ = as_motions(motions, what="motions")
     if len(motions) != len(result.records):
         raise ValueError("give the motions of the IDA, one per record")
     scale = np.array([im_per_unit_pga(m, im, period, p=result.p, ap_min=result.ap_min)

@@ -36,6 +36,7 @@ import numpy as np
 
 from rockarch.motion.intensity import mean_period
 from rockarch.motion.signals import GroundMotion
+from rockarch.motion.suite import as_motions
 from rockarch.spectra import site
 
 if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
@@ -169,6 +170,7 @@ def characteristic(ds: xr.Dataset, motions, *, percentile: float | None = None
     (record, p); the site curves ``normalised`` and ``simplified`` (p) (the site's
     percentile, default the file's), and ``normalised_x`` / ``normalised_curve`` over x =
     p·Tm."""
+    motions, _ = as_motions(motions, what="motions")
     if len(motions) != ds.sizes["record"]:
         raise ValueError(f"the site OAS has {ds.sizes['record']} records, got "
                          f"{len(motions)} motions")

@@ -24,7 +24,13 @@ from rockarch.core.console import on_terminal
 from rockarch.core.constants import G_STANDARD, OAS_TOL
 from rockarch.core.sweep.limits import check_simulations
 from rockarch.motion.signals import GroundMotion
-from rockarch.motion.suite import PGA_RANGE, check_distinct, read_suite, record_files
+from rockarch.motion.suite import (
+    PGA_RANGE,
+    as_motions,
+    check_distinct,
+    read_suite,
+    record_files,
+)
 from rockarch.spectra import oas as spectra
 
 if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
@@ -87,6 +93,8 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              log: Callable[[str], None] | None = None, **system_kw) -> xr.Dataset:
     """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
 
+    ``motions``: the records, a :class:`rockarch.motion.suite.Suite` or GroundMotions.
+
     The structure is the slender block of slenderness ``alpha`` (the paper's site OAS), or
     ``system``, any :func:`rockarch.systems.system`: a block gives the same file as by
     ``alpha``; any other structure has the p axis of :func:`rockarch.spectra.oas.compute_oas`
@@ -99,6 +107,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     executor serves every record: a pool or cluster starts once).
     ``log`` (e.g. ``print`` where no progress bar is shown) gets a line per record done.
     """
+    motions, _ = as_motions(motions, what="motions")
     if not motions:
         raise ValueError("a site OAS needs at least one record")
     if not 0.0 <= float(percentile) <= 100.0:
