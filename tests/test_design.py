@@ -207,12 +207,31 @@ def test_design_cli_lower_bound_is_the_band(site_file):
 
 def test_a_fitted_curve_read_above_records_collapses_is_flagged():
     # normalised and simplified curves are fits over p: where records' first collapses at
-    # the replacement's p lie below their reading, the design says so (stderr, JSON, report)
+    # the replacement's p lie below their reading, the design says so (stderr, JSON, report),
+    # from the IDA (--records) or from the site file's boundaries (--site; before, only the
+    # islands note: the helper's ELC180 at 1.0813 below the normalised 1.0841). A percentile
+    # or the envelope is what it says: no such warning.
     from types import SimpleNamespace
+
+    import xarray as xr
 
     from rockarch.cli.site import _design_caveats
 
+    site_ds = xr.Dataset({"boundary": (("record", "p"), [[1.1, 1.1, 1.4], [1.3, 1.35, np.nan],
+                                                         [np.nan] * 3])},
+                         coords={"p": [1.0, 2.0, 3.0]})
     ida = SimpleNamespace(ratio_collapse=np.array([1.1, 1.3, np.nan]), records=("a", "b", "c"))
-    out = _design_caveats(SimpleNamespace(ratio=1.2), ida, "normalised")
-    assert len(out) == 1 and out[0].startswith("1 of 3 records") and "at 1.1000" in out[0]
-    assert _design_caveats(SimpleNamespace(ratio=1.05), ida, "normalised") == []
+    for route in (ida, None):
+        res = SimpleNamespace(ratio=1.2, chosen=SimpleNamespace(p=1.5))
+        out = [c for c in _design_caveats(res, route, "normalised", site_ds)
+               if "records first collapse" in c]
+        assert len(out) == 1 and out[0].startswith("1 of 3 records") and "at 1.1000" in out[0]
+        for quiet in (SimpleNamespace(ratio=1.05, chosen=res.chosen), res):
+            curve = "normalised" if quiet is not res else "characteristic"
+            assert not [c for c in _design_caveats(quiet, route, curve, site_ds)
+                        if "records first collapse" in c]
+    # on the site route p = 2.5 reads the grid at p = 2 and 3: record 0's lower value, 1.1
+    res = SimpleNamespace(ratio=1.2, chosen=SimpleNamespace(p=2.5))
+    out = _design_caveats(res, None, "simplified", site_ds)
+    assert "1 of 3 records" in out[-1] and "at 1.1000" in out[-1]
+    assert "islands narrower than the grid" in out[0]

@@ -243,7 +243,7 @@ def design(
                           ratio=site_ds["ratio"].values)
     res = design_check(arch, site_ds, rule=thickness_rule, curve=curve, g=g, repl=repl,
                        ida=ida)
-    caveats = _design_caveats(res, ida, curve)
+    caveats = _design_caveats(res, ida, curve, site_ds)
     if res.ratio_is_lower_bound:
         echo_err("warning: no record overturns the equivalent block within the site's ratio "
                  "range; the result is a lower bound")
@@ -481,24 +481,31 @@ def _command_line(opt: dict) -> str:
     return " ".join(shlex.quote(w) for w in words)
 
 
-def _design_caveats(res, ida, curve: str) -> list[str]:
+def _design_caveats(res, ida, curve: str, site_ds) -> list[str]:
     """What an arch's design did not search or bound, each said once on stderr (and given
-    to the report): a site file's islands; a fitted curve read above records' collapses."""
+    to the report): a site file's islands; a fitted curve (normalised, simplified) read
+    above records' first collapses (from the IDA, islands searched, or the site file's)."""
+    notes, warns = [], []
     if ida is None:
-        out = ["a site file holds each record's first collapse on its ratio grid; collapse "
-               "islands narrower than the grid's step are not searched (with --records they "
-               "are, at the arch's p: docs/design.md)"]
+        notes.append("a site file holds each record's first collapse on its ratio grid; "
+                     "collapse islands narrower than the grid's step are not searched (with "
+                     "--records they are, at the arch's p: docs/design.md)")
+        first = site_mod.records_at(site_ds, res.chosen.p)
     else:
-        first = ida.ratio_collapse[np.isfinite(ida.ratio_collapse)]
-        below = first[first < res.ratio]
-        out = [] if not below.size else [
-            f"{below.size} of {len(ida.records)} records first collapse the replacement's "
-            f"block below the {curve} curve's ap/ap,min = {res.ratio:.4f} (the lowest at "
-            f"{below.min():.4f}): that curve is a prediction fitted over p, not a bound "
-            f"(--curve envelope reads the records' first collapses)"]
-    for c in out:
-        echo_err(f"note: {c}" if ida is None else f"warning: {c}")
-    return out
+        first = ida.ratio_collapse
+    first = first[np.isfinite(first)]
+    below = first[first < res.ratio]
+    if curve in ("normalised", "simplified") and below.size:
+        warns.append(f"{below.size} of {site_ds.sizes['record']} records first collapse "
+                     f"the replacement's block below the {curve} curve's ap/ap,min = "
+                     f"{res.ratio:.4f} (the lowest at {below.min():.4f}): that curve is a "
+                     "prediction fitted over p, not a bound (--curve envelope reads the "
+                     "records' first collapses)")
+    for c in notes:
+        echo_err(f"note: {c}")
+    for c in warns:
+        echo_err(f"warning: {c}")
+    return notes + warns
 
 
 def _safe_pga(res, g: float) -> str:

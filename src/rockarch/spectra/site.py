@@ -231,7 +231,19 @@ def curve_at(ds: xr.Dataset, p: float, curve: str = "envelope") -> tuple[float, 
     vals = ds[curve].values
     rmax = float(ds["ratio"].values[-1])
     filled = np.where(np.isfinite(vals), vals, rmax)
-    k = int(np.searchsorted(ps, p))
-    sel = slice(k, k + 1) if ps[min(k, ps.size - 1)] == p else slice(max(k - 1, 0), k + 1)
-    i = max(k - 1, 0) + int(np.argmin(filled[sel])) if sel.start != k else k
+    sel = _around(ps, p)
+    i = sel.start + int(np.argmin(filled[sel]))
     return float(filled[i]), bool(not np.isfinite(vals[i]))
+
+
+def _around(ps: np.ndarray, p: float) -> slice:
+    """The grid values of p read at p: p itself if on the grid, else its two neighbours."""
+    k = int(np.searchsorted(ps, p))
+    return slice(k, k + 1) if ps[min(k, ps.size - 1)] == p else slice(max(k - 1, 0), k + 1)
+
+
+def records_at(ds: xr.Dataset, p: float) -> np.ndarray:
+    """Each record's boundary (first collapse ratio) at p, read as :func:`curve_at` reads a
+    curve (the lower of the neighbouring grid values); +inf where it does not collapse."""
+    b = ds["boundary"].values[:, _around(ds["p"].values, p)]
+    return np.where(np.isfinite(b), b, np.inf).min(axis=1)
