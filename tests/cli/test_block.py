@@ -103,3 +103,20 @@ def test_bad_record_file_exits_2(tmp_path):
                               "--out", str(nc)])
     assert res.exit_code == 2 and "NPTS=3" in res.stderr
     assert not nc.exists()  # nothing half-written
+
+
+def test_oas_messages_say_what_is_wrong():
+    # a negative p among others is named as such (before: "must be strictly increasing")
+    res = runner.invoke(app, ["oas", "--alpha", "0.1", "--signal", "sine", "--period", "0.5",
+                              "--p", "1,-2"])
+    assert res.exit_code == 2 and res.stderr == "error: p values must be > 0 [1/s], got -2\n"
+    # a generic SDOF's own p (default 1) is not printed as the OAS's (p is the table's axis)
+    res = runner.invoke(app, ["oas", "--system", "sdof", "--delta", "0.1", "--ap-min", "1",
+                              "--signal", "sine", "--period", "0.5", "--p", "3,5"])
+    assert res.exit_code == 0
+    assert res.stdout.startswith("OAS of SDOF delta=0.1 rad, ap,min=1 m/s² for sine")
+    # a ring too thick for four hinges: the reason once ("no four-hinge mechanism" was twice)
+    res = runner.invoke(app, ["simulate", "fourhinge", "--shape", "catenary", "--span", "10",
+                              "--rise", "3", "--thickness", "3", "--signal", "sine",
+                              "--period", "0.5", "--ratio", "1"])
+    assert res.exit_code == 2 and res.stderr.count("no four-hinge mechanism") == 1

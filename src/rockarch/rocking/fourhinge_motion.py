@@ -131,7 +131,8 @@ def fourhinge_mechanism(arch: Arch, blocks: int | None = None, *, g: float = G,
             side_p = _side_tables(plus, impact_coefficient(plus, minus), n)
             side_m = _side_tables(minus, impact_coefficient(minus, plus), n)
     except ValueError as exc:
-        raise ValueError(f"{label}: no four-hinge mechanism: {exc}") from None
+        why = str(exc).removeprefix("no four-hinge mechanism: ")
+        raise ValueError(f"{label}: no four-hinge mechanism: {why}") from None
     info = {"kind": "fourhinge", "shape": arch.shape, "span": arch.span, "rise": arch.rise,
             "blocks": -1 if blocks is None else int(blocks), "c1": plus.c1, "c2": plus.c2,
             "ap_min_lp": plus.ap_min, "symmetric": int(symmetric)}

@@ -46,6 +46,8 @@ def _grid(name: str, values) -> np.ndarray:
         raise ValueError(f"{name} must be a non-empty 1-D list of numbers")
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} values must be finite")
+    if name == "p" and np.any(arr <= 0):
+        raise ValueError(f"p values must be > 0 [1/s], got {arr[arr <= 0][0]:g}")
     if np.any(np.diff(arr) <= 0):
         raise ValueError(f"{name} values must be strictly increasing")
     return arr
