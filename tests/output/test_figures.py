@@ -207,3 +207,15 @@ def test_long_histories_are_drawn_by_their_envelope():
     assert td[np.argmax(yd)] == t[np.argmax(y)]
     short = np.arange(10.0)
     assert figures.for_display(short, short)[0] is short  # short lines as they are
+
+
+def test_mechanism_label_is_on_the_coordinate_of_the_text_output():
+    # the arch command prints delta_u for both directions; the figure's label reads u on that
+    # coordinate too (before: u = delta_u/2 for +1 but part 1's rotation, 0.0245, for -1)
+    from rockarch.output.arch_plots import mechanism_figure
+
+    for direction in (1, -1):
+        res = analyse(circular(10.0, 2.89, 0.35), direction=direction)
+        fig = mechanism_figure(res)
+        labels = [t.get_text() for t in fig.legends[0].get_texts()]
+        assert f"mechanism half way to neutral, u = {0.5 * res.delta:.3g} rad" in labels

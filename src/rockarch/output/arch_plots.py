@@ -87,8 +87,9 @@ def _figsize(arch, width: float = 8.0) -> tuple[float, float]:
 def mechanism_figure(res: ArchMechanism, *, u: float | None = None):
     """The arch, its thrust line at collapse, the hinges, the mechanism displaced.
 
-    The displaced shape is drawn half way to the neutral position, at u = delta/2 on the
-    linkage's coordinate (part 1's rotation), unless ``u`` is given.
+    The displaced shape is drawn half way to the neutral position (u = delta_u/2 on the
+    dynamics' coordinate, docs/theory.md Eq. 5.6), unless ``u`` is given: part 1's rotation
+    (the linkage's coordinate, the same as u for direction +1).
     """
     v = res.thrust.voussoirs
     arch = v.arch
@@ -100,9 +101,12 @@ def mechanism_figure(res: ArchMechanism, *, u: float | None = None):
             ax.plot([a[0], b[0]], [a[1], b[1]], color="0.55", lw=0.5, zorder=2)
     draw_thrust_line(ax, res, f"thrust line, ap,min = {res.ap_min:.3f} m/s²")
     uu = 0.5 * res.delta_linkage if u is None else float(u)
+    # the label on the coordinate the text output prints (delta_u), whichever the direction
+    label = (f"mechanism half way to neutral, u = {0.5 * res.delta:.3g} rad" if u is None
+             else f"mechanism at part 1's rotation {uu:.3g} rad")
     for i, poly in enumerate(displaced_parts(res, uu)):
         ax.plot(poly[:, 0], poly[:, 1], color="tab:blue", lw=1.0, zorder=3,
-                label=f"mechanism at u = {uu:.3g} rad" if i == 0 else None)
+                label=label if i == 0 else None)
     draw_hinges(ax, res.hinges)
     ax.set_title(f"{arch.shape} arch l = {arch.span:g} m, f = {arch.rise:g} m: p = "
                  f"{res.p:.3f} 1/s, delta = {res.delta_end:.4f} rad (part {res.end_part}, "
@@ -152,7 +156,10 @@ def design_arch_figure(result):
     draw_replacement_band(ax, result)
     chosen = result.chosen.mechanism
     shift = result.chosen.springings[0]
-    draw_thrust_line(ax, chosen, offset=shift)
+    # the replacement's mechanism, not the arch's (`rockarch arch` draws the arch's own)
+    draw_thrust_line(ax, chosen, offset=shift, label=(
+        f"replacement's thrust line at collapse and its four hinges, ap,min = "
+        f"{chosen.ap_min:.3f} m/s²"))
     draw_hinges(ax, chosen.hinges, ms=6, legend=False, offset=shift)
     _finish(ax, 2)
     return fig

@@ -118,8 +118,10 @@ p = {c.p:.4f} 1/s; ap,min = {c.ap_min:.4f} m/s² ({result.rule} thickness).
 {inline_figure(design_arch_figure(result), "arch")}
 <p>Original arch: critical optimal four-hinge mechanism ap,min = {rep.original.ap_min:.4f} m/s²
 (lambda = {rep.original.lambda_:.5f}), p = {rep.original.p:.4f} 1/s,
-delta_u = {rep.original.delta:.5f} rad. Replacement springings (square markers, original's
-coordinates): P_L = ({c.springings[0, 0]:.4f}, {c.springings[0, 1]:.4f}) m,
+delta_u = {rep.original.delta:.5f} rad (its hinges: <code>rockarch arch</code>). The
+figure draws the chosen replacement's thrust line and four hinges. Replacement springings
+(square markers, original's coordinates):
+P_L = ({c.springings[0, 0]:.4f}, {c.springings[0, 1]:.4f}) m,
 P_R = ({c.springings[1, 0]:.4f}, {c.springings[1, 1]:.4f}) m, on the springing joints;
 l′ is the replacement's own span, l the arch's.</p>
 {replacements}
