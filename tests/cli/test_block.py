@@ -48,14 +48,19 @@ def test_simulate_block_json_contract_and_plot(tmp_path):
     out = _json(["simulate", "block", "--alpha", "0.15", "--p", "2", "--signal", "sine",
                  "--period", "1", "--ratio", "2", "--json", "--plot", str(png)])
     assert set(out) == {"overturned", "t_overturn", "max_theta_over_alpha", "max_rotation_ratio",
-                        "impacts"}
+                        "impacts", "p", "alpha", "width", "height", "ap_min", "restitution"}
     assert out["overturned"] is True and 0 < out["t_overturn"] < 11
+    # the block the text header describes: ap,min = g tan(alpha), p² = 3g/(4R) (Housner)
+    assert out["ap_min"] == pytest.approx(9.81 * np.tan(0.15), rel=1e-12)
+    half_diag = np.hypot(out["width"], out["height"]) / 2
+    assert out["p"] ** 2 == pytest.approx(3 * 9.81 / (4 * half_diag), rel=1e-12)
     assert png.exists()
     safe = _json(["simulate", "block", "--alpha", "0.15", "--p", "2", "--record", REC,
                   "--ratio", "0.99", "--json"])
-    assert safe == {"overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
-                    "max_rotation_ratio": 0.0,
-                    "impacts": 0}
+    assert {k: safe[k] for k in ("overturned", "t_overturn", "max_theta_over_alpha",
+                                 "max_rotation_ratio", "impacts")} == {
+        "overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
+        "max_rotation_ratio": 0.0, "impacts": 0}
 
 
 def test_record_scaling_in_cli_matches_api():
@@ -66,7 +71,8 @@ def test_record_scaling_in_cli_matches_api():
     b = RigidBlock(3.0, 0.1)
     rec = el_centro()
     api = simulate(b, rec.scaled_to_pga(1.3 * b.ap_min)).to_dict()
-    assert out == json.loads(json.dumps(api))
+    assert {k: out[k] for k in api} == json.loads(json.dumps(api))
+    assert (out["p"], out["alpha"], out["ap_min"]) == (3.0, 0.1, b.ap_min)
 
 
 @pytest.mark.parametrize(

@@ -37,25 +37,29 @@ def test_oas_other_mechanisms(extra):
 
 
 def test_simulate_fourhinge_frame_sdof(tmp_path):
-    keys = {"overturned", "t_overturn", "max_theta_over_alpha", "max_rotation_ratio", "impacts"}
+    keys = {"overturned", "t_overturn", "max_theta_over_alpha", "max_rotation_ratio", "impacts",
+            "p", "ap_min", "restitution"}
     png = tmp_path / "fh.png"
     out = _json(["simulate", "fourhinge", "--shape", "catenary", "--span", "10", "--rise",
                  "3", "--thickness", "0.25", "--signal", "sine", "--period", "1", "--ratio",
                  "2", "--json", "--plot", str(png)])
-    assert set(out) == keys and out["overturned"] is True and png.exists()
+    assert set(out) == keys | {"delta_u"} and out["overturned"] is True and png.exists()
+    # what the text header prints (an arch's delta_u: the dynamics' coordinate)
+    assert out["p"] == pytest.approx(3.55, abs=0.005) and out["delta_u"] > 0
     out = _json(["simulate", "fourhinge", "--shape", "catenary", "--span", "10", "--rise",
                  "3", "--thickness", "0.25", "--blocks", "20", "--signal", "sine",
                  "--period", "1", "--ratio", "0.99", "--json"])
-    assert out == {"overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
-                    "max_rotation_ratio": 0.0,
-                   "impacts": 0}
+    assert {k: out[k] for k in keys - {"p", "ap_min", "restitution"}} == {
+        "overturned": False, "t_overturn": None, "max_theta_over_alpha": 0.0,
+        "max_rotation_ratio": 0.0, "impacts": 0}
     out = _json(["simulate", "frame", "--alpha", "0.15", "--p", "2", "--mass-ratio", "0.5",
                  "--signal", "square", "--period", "1", "--ratio", "1.5", "--json"])
-    assert set(out) == keys
+    assert set(out) == keys | {"delta"}
     out = _json(["simulate", "sdof", "--p", "2", "--delta", "0.1", "--ap-min", "1",
                  "--signal", "step", "--period", "1", "--ratio", "1.5", "--json"])
     # step impulse, linear equivalence form: overturns iff ratio ≥ 1/(1 − e^{−pT}) = 1.157
     assert out["overturned"] is True
+    assert (out["p"], out["delta"], out["ap_min"]) == (2.0, 0.1, 1.0)  # as given
 
 
 @pytest.mark.parametrize(

@@ -30,7 +30,7 @@ from rockarch.cli._groups import MDOF, MDOF_STEP, MOTION, RATIO, RUN, SDOF, opti
 from rockarch.core.validate import positive
 from rockarch.mdof.simulate import STEP_CHECK_MAX_BLOCKS
 from rockarch.output import check_outputs
-from rockarch.systems import scale_to_ratio
+from rockarch.systems import BlockSystem, scale_to_ratio
 from rockarch.systems import system as make_system
 
 #: Slips below this [m] are the contact solve's tolerance (10⁻⁶·g·h per step, a few µm at
@@ -44,12 +44,25 @@ def _sdof(kind: str, header: Callable, opts: dict, **system_kw) -> None:
     heading ``header(system)``."""
     check_outputs((opts["plot"], "--plot", "png"))
     sysobj = make_system(kind, **system_kw, **pick(opts, SDOF))
-    _run(sysobj, header(sysobj), opts)
+    _run(sysobj, header(sysobj), opts, extra=_sdof_parameters(sysobj))
+
+
+def _sdof_parameters(sysobj) -> dict:
+    """The system's parameters that its text header prints, for ``--json`` (SI units)."""
+    if isinstance(sysobj, BlockSystem):
+        blk = sysobj.block()
+        return {"p": blk.p, "alpha": blk.alpha, "width": blk.width, "height": blk.height,
+                "ap_min": blk.ap_min, "restitution": blk.r}
+    mech = sysobj.mechanism
+    # an arch's delta_u: the dynamics' coordinate, not Table 1's delta (`rockarch arch`)
+    delta = "delta_u" if mech.info.get("kind") == "fourhinge" else "delta"
+    return {"p": mech.p, delta: mech.delta, "ap_min": mech.ap_min,
+            "restitution": [mech.plus.e_close, mech.minus.e_close]}
 
 
 def _fourhinge_header(sysobj) -> str:
     mech = sysobj.mechanism
-    return (f"{mech.name}: p={mech.p:.4g} 1/s, delta={mech.delta:.4g} rad, "
+    return (f"{mech.name}: p={mech.p:.4g} 1/s, delta_u={mech.delta:.4g} rad, "
             f"ap,min={mech.ap_min:.4g} m/s², impact e={mech.plus.e_close:.4f}/"
             f"{mech.minus.e_close:.4f}")
 
@@ -210,9 +223,11 @@ def _mdof_header(a) -> str:
     fr = "" if a.frictionless else f", friction {np.min(a.mu):g}" + (
         "" if np.ptp(a.mu) == 0 else f"..{np.max(a.mu):g}")
     rock = a.info.get("ap_min_no_sliding", a.ap_min)
-    ref = (f"p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad" if a.ap_min >= rock * (1 - 1e-9)
+    # an arch's reference is its four-hinge mechanism, on the dynamics' coordinate u
+    d = "delta_u" if "hinges" in a.info else "delta"
+    ref = (f"p={a.p_ref:.4g} 1/s, {d}={a.delta_ref:.4g} rad" if a.ap_min >= rock * (1 - 1e-9)
            else f"its collapse mechanism slides; rocking alone from {rock:.4g} m/s², "
-                f"p={a.p_ref:.4g} 1/s, delta={a.delta_ref:.4g} rad")
+                f"p={a.p_ref:.4g} 1/s, {d}={a.delta_ref:.4g} rad")
     return (f"{a.name}: {_count(a.n_blocks, 'block')}, {_count(a.n_joints, 'joint')}{fr}, "
             f"ap,min={a.ap_min:.4g} m/s², {ref} (Moreau–Jean, docs/mdof.md)")
 
