@@ -139,3 +139,18 @@ def test_horizontal_weights_rejects_bad_input():
         horizontal_weights([0, 2, 1], [1, 1])
     with pytest.raises(ValueError, match=">= 0"):
         horizontal_weights([0, 1, 2], [1, -1])
+
+
+def test_an_arch_in_millimetres_is_warned_about():
+    # 10 000 m read from sizes in mm runs as a 10 km arch (p = 0.116 1/s) with nothing said;
+    # blocks and assembly files warn already (docs/assemblies.md)
+    import warnings
+
+    from rockarch.arch.geometry import make_arch
+    from rockarch.motion.records import UnitsWarning
+
+    with pytest.warns(UnitsWarning, match="spans 1e\\+04 m: sizes are in metres"):
+        make_arch("circular", 10000, 2890, 350)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        make_arch("circular", 10, 2.89, 0.35)  # the Sect. 9 arch: quiet

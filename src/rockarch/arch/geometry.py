@@ -25,6 +25,7 @@ Mass models (``Arch.mass_model``):
 from __future__ import annotations
 
 import importlib
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
@@ -280,9 +281,15 @@ def elliptical(span: float, rise: float, thickness, *, mass_model: str = "vousso
                 _elliptical_axis(span, rise), mass_model=mass_model)
 
 
+#: Spans above this [m] are read as a units mistake and warned about (the longest masonry
+#: arches span about 120 m).
+PLAUSIBLE_SPAN = 300.0
+
+
 def make_arch(shape: str, span: float, rise: float, thickness, *,
               mass_model: str = "voussoir") -> Arch:
-    """Build an arch of one of :data:`SHAPES` by name."""
+    """Build an arch of one of :data:`SHAPES` by name (a span above
+    :data:`PLAUSIBLE_SPAN` warns: millimetres?)."""
     builders = {"catenary": catenary, "circular": circular, "pointed": pointed,
                 "elliptical": elliptical}
     if not isinstance(shape, str):
@@ -290,7 +297,14 @@ def make_arch(shape: str, span: float, rise: float, thickness, *,
                         f"{type(shape).__name__} {shape!r}"[:200])
     if shape not in builders:
         raise ValueError(f"shape must be one of {', '.join(SHAPES)}, got {shape!r}")
-    return builders[shape](span, rise, thickness, mass_model=mass_model)
+    arch = builders[shape](span, rise, thickness, mass_model=mass_model)
+    if arch.span > PLAUSIBLE_SPAN:
+        from rockarch.motion.records import UnitsWarning
+
+        warnings.warn(UnitsWarning(
+            f"the arch spans {arch.span:.4g} m: sizes are in metres (millimetres? divide "
+            "them by 1000)"), stacklevel=2)
+    return arch
 
 
 def _check_polyline(name: str, points) -> np.ndarray:
