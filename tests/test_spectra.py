@@ -76,7 +76,7 @@ def test_block_oas_map_equals_batch_runs_and_roundtrips(tmp_path):
 
 
 def test_slender_block_oas_nearly_independent_of_alpha():
-    """Paper Fig. 3a / physics note §2: for slender blocks the OAS hardly depends on alpha;
+    """Paper Fig. 3a / docs/theory.md §2: for slender blocks the OAS hardly depends on alpha;
     sine pulse boundaries of alpha = 0.02 and 0.05 agree within 1 % (O(α²) effects)."""
     p = [1.5, 3.0, 6.0]
     b = [spectra.compute_oas(systems.BlockSystem(alpha=a), mo.sine(1, 1.0), p,

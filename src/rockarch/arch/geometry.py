@@ -66,7 +66,7 @@ _DENSE = 8192  # samples of the parametric axis used to build the arc-length map
 
 @dataclass(frozen=True)
 class Arch:
-    """An arch: an axis from (0, 0) to (span, 0) and a thickness normal to it (Sect. 4).
+    """An arch: an axis from (0, 0) to (span, 0) and a thickness normal to it (docs/theory.md §4).
 
     Build one with :func:`catenary`, :func:`weighted_catenary`, :func:`circular`,
     :func:`pointed`, :func:`elliptical`, :func:`polyline` or :func:`from_contour`.
@@ -237,7 +237,7 @@ def _thickness_arg(thickness, span: float | None = None) -> float | Callable:
 
 
 def catenary(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
-    """Catenary arch, mass uniform along the arc: y = f + a - a*cosh((x - l/2)/a) (Sect. 4)."""
+    """Catenary arch, mass uniform along the arc: y = f + a - a*cosh((x - l/2)/a) (Eq. (4.4))."""
     span, rise = _span_rise(span, rise)
     return Arch("catenary", span, rise, _thickness_arg(thickness, span),
                 _catenary_axis(span, rise),
@@ -245,7 +245,10 @@ def catenary(span: float, rise: float, thickness, *, mass_model: str = "voussoir
 
 
 def circular(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
-    """Circular (segmental up to semicircular) arch from span and rise of the axis (Sect. 8)."""
+    """Circular (segmental up to semicircular) arch from span and rise of the axis.
+
+    The arch of the paper's Sect. 8 is one.
+    """
     span, rise = _span_rise(span, rise)
     return Arch("circular", span, rise, _thickness_arg(thickness, span),
                 _circular_axis(span, rise),

@@ -1,11 +1,11 @@
 """Overturning acceleration spectra (OAS): the safe/unsafe map over p × ap/ap,min.
 
 For one ground-motion *shape* (a pulse of fixed period, or one record), a structure with
-frequency parameter p is excited with peak ground acceleration ap = ratio·ap,min (physics
-note section 2, paper Fig. 2). The OAS is the boolean map ``overturned(p, ratio)``; its
-boundary is the lowest overturning ratio per p, refined by bisection below the first
-overturning grid cell. The map is kept whole: safe islands above the boundary (real for
-records) are never filled in.
+frequency parameter p is excited with peak ground acceleration ap = ratio·ap,min
+(docs/theory.md §2, Eq. (2.1); paper Fig. 2). The OAS is the boolean map
+``overturned(p, ratio)``; its boundary is the lowest overturning ratio per p (Eq. (2.2)),
+refined by bisection below the first overturning grid cell. The map is kept whole: safe
+islands above the boundary (real for records) are never filled in.
 """
 
 from __future__ import annotations
@@ -54,7 +54,10 @@ def _grid(name: str, values) -> np.ndarray:
 def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float = TOL,
                 progress: bool | None = None, chunks: int = 32, executor=None,
                 store=None) -> xr.Dataset:
-    """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio`` (Sect. 1).
+    """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio``.
+
+    The map of docs/theory.md §2: Eq. (2.1) scales the motion, Eq. (2.2) defines the
+    boundary.
 
     Parameters
     ----------

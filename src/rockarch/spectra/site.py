@@ -91,7 +91,9 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
              progress: bool | None = None, executor=None, store=None, system=None,
              log: Callable[[str], None] | None = None, **system_kw) -> xr.Dataset:
-    """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
+    """OAS of every record and the site's envelope and percentile curves (Eq. (2.2)).
+
+    The site OAS of the paper's design method (paper Sect. 9).
 
     ``motions``: the records, a :class:`rockarch.motion.suite.Suite` or GroundMotions.
 
