@@ -78,8 +78,14 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
         split the same way.
     executor : None, str or rockarch.core.sweep.Executor
         Where the chunks run: None (default) in this process with numba threads on every
-        core; ``"serial"``, ``"processes"`` or ``"dask"`` (see :mod:`rockarch.core.sweep`), or an
-        :class:`~rockarch.core.sweep.Executor` to reuse (it is not closed here).
+        core; ``"serial"`` (the same, chunk after chunk) or ``"processes"`` (a pool of local
+        processes, one per core; started and closed here); or an
+        :class:`~rockarch.core.sweep.Executor` to reuse (it is not closed here). Dask needs
+        an Executor object, not the string ``"dask"`` (a ValueError):
+        ``Executor(dask_workers=n)`` starts a ``LocalCluster`` of n worker processes,
+        ``Executor(scheduler="tcp://HOST:PORT")`` connects to a running scheduler; use it
+        as a context manager (``with Executor(dask_workers=4) as ex: compute_oas(...,
+        executor=ex)``) so that the cluster is stopped. See docs/sweeps.md.
     store : None, bool, path or rockarch.core.sweep.Store
         Resumable store of finished chunks (None/False: none; True: the default cache
         directory). A rerun reuses every stored chunk; results are bit-identical.
