@@ -105,3 +105,27 @@ def test_load_rejects_other_files(tmp_path):
     with pytest.raises(ValueError, match="not a readable NetCDF file") as err:  # first line
         spectra.load(f)
     assert "\n" not in str(err.value) and len(str(err.value)) < 300
+
+
+def test_oas_load_refuses_a_site_oas_file(tmp_path):
+    """A site OAS (record × p × ratio) read as one OAS was taken silently; now a ValueError
+    says what it is and what reads it, as site.load says of an OAS file."""
+    from rockarch.spectra import site
+
+    motions = [mo.sine(1, 1.0), mo.pulse("sine", period=0.6)]
+    ds = site.site_oas(motions, [1.0, 2.0], [1.0, 2.0, 4.0], progress=False)
+    f = tmp_path / "site.nc"
+    site.save(ds, f)
+    with pytest.raises(ValueError, match="site.nc: not an OAS file but a rockarch site OAS "
+                                         "file: read it with rockarch.spectra.site.load"):
+        spectra.load(f)
+    ds.attrs.pop("kind")  # no kind attribute: the record axis still gives it away
+    site.save(ds, f)
+    with pytest.raises(ValueError, match="not an OAS file but a rockarch site OAS file"):
+        spectra.load(f)
+    one = spectra.compute_oas(systems.BlockSystem(alpha=0.1), motions[0], [1.0, 2.0],
+                              [1.0, 2.0, 4.0], progress=False)
+    spectra.save(one, tmp_path / "oas.nc")
+    assert spectra.load(tmp_path / "oas.nc").boundary.dims == ("p",)  # an OAS still loads
+    with pytest.raises(ValueError, match="not a rockarch site OAS file"):
+        site.load(tmp_path / "oas.nc")

@@ -221,8 +221,36 @@ def read_netcdf(path) -> xr.Dataset:
 
 
 def load(path) -> xr.Dataset:
-    """Read an OAS dataset written by :func:`save`."""
+    """Read an OAS dataset written by :func:`save` (``rockarch oas --out``).
+
+    Parameters
+    ----------
+    path : str or path
+        The NetCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset of :func:`compute_oas`, read into memory.
+
+    Raises
+    ------
+    ValueError
+        If the file is missing or not NetCDF, has no ``overturned``/``boundary`` over
+        (p, ratio), or is a rockarch file of another kind (a site OAS, with its ``record``
+        axis: read it with :func:`rockarch.spectra.site.load`).
+    """
     ds = read_netcdf(path)
+    kind = ds.attrs.get("kind")
+    if kind is not None or "record" in ds.dims:
+        what = ("a rockarch site OAS file: read it with rockarch.spectra.site.load"
+                if kind == "rockarch-site-oas" or kind is None
+                else f"a file of kind {kind!r}")
+        raise ValueError(f"{path}: not an OAS file but {what} (an OAS file is written by "
+                         "`rockarch oas --out` or rockarch.spectra.oas.save)")
     if "overturned" not in ds or "boundary" not in ds:
         raise ValueError(f"{path}: not an OAS file (no 'overturned'/'boundary' variables)")
+    if ds["overturned"].dims != ("p", "ratio") or ds["boundary"].dims != ("p",):
+        raise ValueError(f"{path}: not an OAS file ('overturned' is over "
+                         f"{ds['overturned'].dims}, an OAS's over ('p', 'ratio'))")
     return ds
