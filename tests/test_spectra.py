@@ -129,3 +129,39 @@ def test_oas_load_refuses_a_site_oas_file(tmp_path):
     assert spectra.load(tmp_path / "oas.nc").boundary.dims == ("p",)  # an OAS still loads
     with pytest.raises(ValueError, match="not a rockarch site OAS file"):
         site.load(tmp_path / "oas.nc")
+
+
+def test_site_and_oas_files_state_their_units(tmp_path):
+    """A site OAS file's curves carry units and long names as an OAS file's boundary does,
+    record_name says how to select by name, and the numeric attributes' units are in the
+    file (attribute_units); a file written before (without them) still loads."""
+    import rockarch as ra
+    from rockarch.spectra import site
+
+    motions = [mo.sine(1, 1.0), mo.pulse("sine", period=0.6)]
+    f = tmp_path / "site.nc"
+    site.save(site.site_oas(motions, [1.0, 2.0], [1.0, 2.0, 4.0], progress=False), f)
+    ds = site.load(f)
+    for name in ("boundary", "envelope", "characteristic"):
+        assert ds[name].attrs["units"] == "1" and "ap/ap,min" in ds[name].attrs["long_name"]
+    assert "swap_dims(record='record_name')" in ds["record_name"].attrs["long_name"]
+    assert np.array_equal(ds.swap_dims(record="record_name")["boundary"].sel(
+        record_name="sine T=0.6 s").values, ds["boundary"].values[1], equal_nan=True)
+    units = dict(u.split(": ") for u in ds.attrs["attribute_units"].split("; "))
+    assert units["alpha"] == "rad" and units["t_free"] == "s"
+    one = spectra.compute_oas(systems.BlockSystem(alpha=0.1), motions[0], [1.0], [1.0, 2.0],
+                              progress=False)
+    units = dict(u.split(": ") for u in one.attrs["attribute_units"].split("; "))
+    assert (units["system_alpha"], units["system_g"], units["system_ap_min"]) == \
+        ("rad", "m/s2", "m/s2")
+    other = site.site_oas(motions, [1.0, 2.0], [1.0, 2.0],
+                          system=ra.system("sdof", p=2.0, delta=0.2, ap_min=2.0),
+                          progress=False)
+    assert "system_delta: rad" in other.attrs["attribute_units"]
+    old = ds.copy()  # as written before: no attribute_units, no variable attributes
+    del old.attrs["attribute_units"]
+    for v in old.variables.values():
+        v.attrs.clear()
+    site.save(old, f)
+    assert np.array_equal(site.load(f)["envelope"].values, ds["envelope"].values,
+                          equal_nan=True)

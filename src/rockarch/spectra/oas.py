@@ -40,6 +40,31 @@ class OASSystem(Protocol):
         """Parameters to store with the result (plain numbers and strings)."""
 
 
+#: Units of the numeric dataset attributes rockarch writes, by name without a ``system_``
+#: prefix ("1": dimensionless). A file lists those it holds in its ``attribute_units``.
+ATTR_UNITS = {
+    "alpha": "rad", "delta": "rad", "delta_ref": "rad",
+    "g": "m/s2", "ap_min": "m/s2", "ap_min_assembly": "m/s2", "ap_min_lp": "m/s2",
+    "p": "1/s", "p_ref": "1/s", "p_assembly": "1/s", "p_column": "1/s",
+    "t_free": "s", "tm_site": "s",
+    "size_ref": "m", "span": "m", "rise": "m", "thickness": "m", "pier_height": "m",
+    "pier_width": "m",
+    "restitution": "1", "e_plus": "1", "e_minus": "1", "h_factor": "1", "eps_rest": "1",
+    "gap_tol": "1", "friction_min": "1", "tolerance": "1", "c1": "1", "c2": "1",
+    "impact_coeff": "1", "percentile": "%", "percentile_characteristic": "%",
+}
+
+
+def note_units(ds: xr.Dataset) -> xr.Dataset:
+    """Set ``ds.attrs["attribute_units"]``: ``"name: unit; ..."`` for every numeric attribute
+    of :data:`ATTR_UNITS` that ``ds`` holds (SI; "1" dimensionless), so that a file says the
+    units of ``system_alpha``, ``system_g``, ``alpha``, ... itself. Returns ``ds``."""
+    units = [f"{k}: {ATTR_UNITS[k.removeprefix('system_')]}" for k, v in ds.attrs.items()
+             if k.removeprefix("system_") in ATTR_UNITS and not isinstance(v, str)]
+    ds.attrs["attribute_units"] = "; ".join(units)
+    return ds
+
+
 def _grid(name: str, values) -> np.ndarray:
     arr = np.atleast_1d(np.asarray(values, dtype=float))
     if arr.ndim != 1 or arr.size == 0:
@@ -150,7 +175,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     ds.attrs.update(system=system.name, motion=motion.name,
                     motion_sha256=motion.fingerprint(), rockarch_version=__version__,
                     title=f"OAS of {system.name} for {motion.name}")
-    return ds
+    return note_units(ds)
 
 
 def refine_boundary(run, p, ratio, over, tol, bar, chunks) -> np.ndarray:
