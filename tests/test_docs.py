@@ -122,3 +122,44 @@ def test_dangling_citations_are_found():
     assert bad == ["Eq. 3 of", "physics note", "Eq. 12–14", "Sect. 12", "Eqs. (4.1)–(4.9)"]
     assert dangling_citations("Eqs. (2.1)–(2.2), §11.2, paper Eqs. 12–14, the paper's "
                               "Sect. 9, Eq. (6.3a)", eqs, secs) == []
+
+
+#: The front door of docs/index.md and the README: ``help(ra.X)`` must stand on its own.
+FRONT_DOOR = ("oas", "simulate", "batch", "make_arch", "read_record", "el_centro",
+              "synthetic_suite", "system", "read_suite")
+
+
+def test_front_door_docstrings_are_complete():
+    """Each has a one-line summary and numpy-style Parameters and Returns sections naming
+    every parameter, with units where a parameter has them."""
+    import inspect
+
+    import rockarch as ra
+
+    for name in FRONT_DOOR:
+        fn = getattr(ra, name)
+        doc = inspect.getdoc(fn)
+        summary, _, body = doc.partition("\n\n")
+        assert "\n" not in summary and summary.endswith("."), (name, summary)
+        for section in ("Parameters\n----------", "Returns\n-------"):
+            assert section in body, (name, section)
+        params = body.split("Parameters\n----------")[1].split("\n\n")[0]
+        documented = re.findall(r"^(\w+(?:, \w+)*) :", params, flags=re.M)
+        names = {n for group in documented for n in group.split(", ")}
+        missing = [p for p in inspect.signature(fn).parameters if p not in names]
+        assert not missing, (name, missing)
+
+
+def test_front_door_examples_run():
+    """The Examples of the front-door docstrings compute what they show."""
+    import doctest
+
+    import rockarch as ra
+
+    finder, runner = doctest.DocTestFinder(recurse=False), doctest.DocTestRunner()
+    ran = 0
+    for name in FRONT_DOOR:
+        for test in finder.find(getattr(ra, name), name):
+            runner.run(test)
+            ran += len(test.examples)
+    assert runner.failures == 0 and ran >= 20, (runner.failures, ran)

@@ -285,7 +285,53 @@ def elliptical(span: float, rise: float, thickness, *, mass_model: str = "vousso
 
 def make_arch(shape: str, span: float, rise: float, thickness, *,
               mass_model: str = "voussoir") -> Arch:
-    """Build an arch of one of :data:`SHAPES` by name."""
+    """Build an arch of one of :data:`SHAPES` by name, from the span and rise of its axis.
+
+    The arch for :func:`rockarch.system` ``("fourhinge"|"mdof", ...)`` and the arch
+    functions (limit analysis, replacement catenary, design); geometry in docs/theory.md §4
+    and docs/arch.md.
+
+    Parameters
+    ----------
+    shape : str
+        ``"catenary"`` (:func:`catenary`), ``"circular"`` (segmental up to semicircular,
+        :func:`circular`), ``"pointed"`` (two-centred, rise > span/2, :func:`pointed`) or
+        ``"elliptical"`` (semi-elliptical, :func:`elliptical`).
+    span : float
+        Span of the axis, springing to springing [m].
+    rise : float
+        Rise of the axis above the springings [m]; rise/span within
+        :data:`RISE_OVER_SPAN` and the shape's own limits.
+    thickness : float, array-like or callable
+        Thickness normal to the axis [m]: a number (uniform), values spaced evenly along
+        the axis from springing to springing, or a function of the normalised arc length
+        sigma in [0, 1] (a pointed arch takes a number only).
+    mass_model : str
+        ``"voussoir"`` (default: the true voussoir polygons, uniform density) or ``"axis"``
+        (the same mass lumped on the axis as a line mass); see
+        :mod:`rockarch.arch.geometry`. (``"weights"`` needs weights: use
+        :func:`rockarch.arch.funicular.weighted_catenary`.)
+
+    Returns
+    -------
+    Arch
+        Axis from (0, 0) to (span, 0), thickness, mass model.
+
+    Raises
+    ------
+    TypeError
+        If ``shape`` is not a string, or a number is of the wrong type.
+    ValueError
+        If ``shape`` is not one of :data:`SHAPES`, span, rise or thickness is out of range,
+        or the thickness does not fit the shape.
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> arch = ra.make_arch("circular", span=10.0, rise=2.89, thickness=0.35)
+    >>> arch.shape, arch.span, arch.uniform_thickness
+    ('circular', 10.0, 0.35)
+    """
     builders = {"catenary": catenary, "circular": circular, "pointed": pointed,
                 "elliptical": elliptical}
     if not isinstance(shape, str):
