@@ -2,7 +2,7 @@
 
 These do not use rockarch's integrator: they follow from energy conservation of the exact
 (nonlinear) equation theta'' = -p² [sin(alpha - theta) - (a/g) cos(alpha - theta)] for
-theta > 0 under a constant ground acceleration (physics note section 1).
+theta > 0 under a constant ground acceleration (docs/theory.md §1).
 """
 
 import math

@@ -76,7 +76,7 @@ def test_block_oas_map_equals_batch_runs_and_roundtrips(tmp_path):
 
 
 def test_slender_block_oas_nearly_independent_of_alpha():
-    """Paper Fig. 3a / physics note §2: for slender blocks the OAS hardly depends on alpha;
+    """Paper Fig. 3a / docs/theory.md §2: for slender blocks the OAS hardly depends on alpha;
     sine pulse boundaries of alpha = 0.02 and 0.05 agree within 1 % (O(α²) effects)."""
     p = [1.5, 3.0, 6.0]
     b = [spectra.compute_oas(systems.BlockSystem(alpha=a), mo.sine(1, 1.0), p,
@@ -105,3 +105,63 @@ def test_load_rejects_other_files(tmp_path):
     with pytest.raises(ValueError, match="not a readable NetCDF file") as err:  # first line
         spectra.load(f)
     assert "\n" not in str(err.value) and len(str(err.value)) < 300
+
+
+def test_oas_load_refuses_a_site_oas_file(tmp_path):
+    """A site OAS (record × p × ratio) read as one OAS was taken silently; now a ValueError
+    says what it is and what reads it, as site.load says of an OAS file."""
+    from rockarch.spectra import site
+
+    motions = [mo.sine(1, 1.0), mo.pulse("sine", period=0.6)]
+    ds = site.site_oas(motions, [1.0, 2.0], [1.0, 2.0, 4.0], progress=False)
+    f = tmp_path / "site.nc"
+    site.save(ds, f)
+    with pytest.raises(ValueError, match="site.nc: not an OAS file but a rockarch site OAS "
+                                         "file: read it with rockarch.spectra.site.load"):
+        spectra.load(f)
+    ds.attrs.pop("kind")  # no kind attribute: the record axis still gives it away
+    site.save(ds, f)
+    with pytest.raises(ValueError, match="not an OAS file but a rockarch site OAS file"):
+        spectra.load(f)
+    one = spectra.compute_oas(systems.BlockSystem(alpha=0.1), motions[0], [1.0, 2.0],
+                              [1.0, 2.0, 4.0], progress=False)
+    spectra.save(one, tmp_path / "oas.nc")
+    assert spectra.load(tmp_path / "oas.nc").boundary.dims == ("p",)  # an OAS still loads
+    with pytest.raises(ValueError, match="not a rockarch site OAS file"):
+        site.load(tmp_path / "oas.nc")
+
+
+def test_site_and_oas_files_state_their_units(tmp_path):
+    """A site OAS file's curves carry units and long names as an OAS file's boundary does,
+    record_name says how to select by name, and the numeric attributes' units are in the
+    file (attribute_units); a file written before (without them) still loads."""
+    import rockarch as ra
+    from rockarch.spectra import site
+
+    motions = [mo.sine(1, 1.0), mo.pulse("sine", period=0.6)]
+    f = tmp_path / "site.nc"
+    site.save(site.site_oas(motions, [1.0, 2.0], [1.0, 2.0, 4.0], progress=False), f)
+    ds = site.load(f)
+    for name in ("boundary", "envelope", "characteristic"):
+        assert ds[name].attrs["units"] == "1" and "ap/ap,min" in ds[name].attrs["long_name"]
+    assert "swap_dims(record='record_name')" in ds["record_name"].attrs["long_name"]
+    assert np.array_equal(ds.swap_dims(record="record_name")["boundary"].sel(
+        record_name="sine T=0.6 s").values, ds["boundary"].values[1], equal_nan=True)
+    units = dict(u.split(": ") for u in ds.attrs["attribute_units"].split("; "))
+    assert units["alpha"] == "rad" and units["t_free"] == "s"
+    one = spectra.compute_oas(systems.BlockSystem(alpha=0.1), motions[0], [1.0], [1.0, 2.0],
+                              progress=False)
+    units = dict(u.split(": ") for u in one.attrs["attribute_units"].split("; "))
+    assert (units["system_alpha"], units["system_g"], units["system_ap_min"]) == \
+        ("rad", "m/s2", "m/s2")
+    other = site.site_oas(motions, [1.0, 2.0], [1.0, 2.0],
+                          system=ra.system("sdof", p=2.0, delta=0.2, ap_min=2.0),
+                          progress=False)
+    assert "system_delta: rad" in other.attrs["attribute_units"]
+    old = ds.copy()  # as written before: no attribute_units, no variable attributes
+    del old.attrs["attribute_units"]
+    for v in old.variables.values():
+        v.attrs.clear()
+    site.save(old, f)
+    assert np.array_equal(site.load(f)["envelope"].values, ds["envelope"].values,
+                          equal_nan=True)

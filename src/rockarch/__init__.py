@@ -33,21 +33,123 @@ from rockarch.spectra.oas import compute_oas as _compute_oas  # noqa: E402
 from rockarch.systems import KINDS, batch, simulate, system  # noqa: E402
 
 
-def synthetic_suite(n: int, seed: int = 0, **kw) -> Suite:
-    """A :class:`Suite` of ``n`` seeded synthetic records (Rezaeian & Der Kiureghian model,
-    parameters from their 2010 fitted distributions;
-    :func:`rockarch.motion.synthetic.synthetic_suite`)."""
+def synthetic_suite(n: int, seed: int = 0, *, dt: float | None = None,
+                    f_corner: float | None = None, pulse_fraction: float = 0.0) -> Suite:
+    """A suite of ``n`` seeded synthetic ground-motion records.
+
+    Rezaeian & Der Kiureghian's modulated, filtered white-noise model, its six parameters
+    drawn per record from their 2010 fitted distributions (docs/theory.md §11.1,
+    Eqs. (11.8)–(11.11); docs/sites.md, "Synthetic suites"). The same ``(n, seed)`` gives
+    the same records, sample for sample.
+
+    Parameters
+    ----------
+    n : int
+        Number of records, >= 1.
+    seed : int
+        Seed of the random draws (parameters and noise).
+    dt : float, optional
+        Sampling interval [s] (None: 0.01, :data:`rockarch.motion.synthetic.DT`).
+    f_corner : float, optional
+        Corner frequency of the high-pass post-processing [Hz] (None: 0.2,
+        :data:`rockarch.motion.synthetic.F_CORNER`).
+    pulse_fraction : float
+        Share of the records given a near-fault velocity pulse, in [0, 1] (Mavroeidis &
+        Papageorgiou, Eq. (11.14)).
+
+    Returns
+    -------
+    Suite
+        Records named ``rdk-s{seed}-{k:03d}``, accelerations in m/s²; each record's model
+        parameters are in ``suite[k].motion.meta``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        If ``n``, ``seed``, ``dt``, ``f_corner`` or ``pulse_fraction`` is of the wrong type
+        or out of range.
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> suite = ra.synthetic_suite(3, seed=1)
+    >>> len(suite), suite.names[0]
+    (3, 'rdk-s1-000')
+    """
     from rockarch.motion.synthetic import synthetic_suite as _synthetic_suite
 
-    return _synthetic_suite(n, seed, **kw)
+    kw = {k: v for k, v in (("dt", dt), ("f_corner", f_corner)) if v is not None}
+    return _synthetic_suite(n, seed, pulse_fraction=pulse_fraction, **kw)
 
 
 def oas(sys_, motion: GroundMotion, *, p, ratio, tol: float | None = None,
         progress: bool = False, executor=None, store=None):
-    """OAS of a system for the motion's shape over p × ratio (docs/theory.md Eqs. 2.1–2.2).
+    """Overturning acceleration spectrum (OAS) of a system for one ground-motion shape.
 
-    The same computation as ``rockarch oas`` (which passes the same grids); see
-    :func:`rockarch.spectra.oas.compute_oas` for the executor and store options.
+    At every (p, ratio) of the grid the structure, at frequency parameter p, is excited by
+    the motion scaled to a peak ground acceleration ap = ratio·ap,min (docs/theory.md §2,
+    Eq. (2.1)); the boundary is the lowest overturning ratio at each p (Eq. (2.2)), refined
+    by bisection. The same computation as ``rockarch oas``
+    (:func:`rockarch.spectra.oas.compute_oas`).
+
+    Parameters
+    ----------
+    sys_ : BlockSystem, MechanismSystem or MDOFSystem
+        The structure, from :func:`rockarch.system`. A block is taken at each p with its
+        alpha; any other structure is scaled geometrically to each p (size ∝ 1/p²,
+        docs/theory.md Eq. (11.33)), its ap,min unchanged.
+    motion : GroundMotion
+        The ground motion (:func:`rockarch.pulse`, :func:`rockarch.read_record`,
+        :func:`rockarch.el_centro`); only its shape matters: each run scales it to a peak
+        |a_g| of ratio·ap,min [m/s²].
+    p : float or array-like
+        Frequency parameters [1/s]: > 0, strictly increasing.
+    ratio : float or array-like
+        Peak ground acceleration over the structure's ap,min [-]: >= 0, strictly
+        increasing.
+    tol : float, optional
+        Bisection tolerance of the boundary, in ratio units (default 1e-3,
+        :data:`rockarch.core.constants.OAS_TOL`); 0: the boundary is the first overturning
+        grid value.
+    progress : bool
+        Show a progress bar on stderr.
+    executor : None, str or rockarch.core.sweep.Executor
+        Where the simulations run: None (default) in this process with numba threads on
+        every core; ``"serial"`` or ``"processes"`` (a pool of local processes); or an
+        :class:`~rockarch.core.sweep.Executor`. For Dask give an Executor, not the string
+        ``"dask"``: ``Executor(dask_workers=n)`` (a local cluster of n workers) or
+        ``Executor(scheduler="tcp://HOST:PORT")``, used as a context manager.
+    store : None, bool, path or rockarch.core.sweep.Store
+        Resumable store of finished chunks (True: the default cache directory; None or
+        False: none); a rerun reuses every stored chunk, bit for bit (docs/sweeps.md).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``overturned`` (p, ratio): bool; ``max_response`` (p, ratio): the largest rotation
+        over its overturning value [-] (1 at collapse); ``boundary`` (p): the lowest
+        overturning ratio [-], NaN where no ratio of the grid overturns. Coordinates ``p``
+        [1/s] and ``ratio`` [-]; the structure's parameters as attributes ``system_*``
+        (their units in the attribute ``attribute_units``). Save it with
+        :func:`rockarch.spectra.oas.save`.
+
+    Raises
+    ------
+    TypeError
+        If ``sys_`` is not a system or ``motion`` not a GroundMotion.
+    ValueError
+        If a grid is empty, not finite or not strictly increasing, a p <= 0 or a
+        ratio < 0, the grid has more simulations than the limit (docs/limits.md), or
+        ``executor`` is not one of the forms above (the string ``"dask"`` included).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import rockarch as ra
+    >>> ds = ra.oas(ra.system("block", alpha=0.1), ra.pulse("sine", period=0.5),
+    ...             p=[1.0, 2.0], ratio=np.linspace(1.0, 5.0, 9))
+    >>> ds["boundary"].dims, ds["overturned"].shape
+    (('p',), (2, 9))
     """
     from rockarch.core.validate import numbers
     from rockarch.systems import check_motion, check_system

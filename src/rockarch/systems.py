@@ -380,42 +380,101 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
            wall: Sequence[int] | None = None, block: Sequence[float] | None = None,
            colonnade: int | None = None, bay: float | None = None,
            lintel: float | None = None, assembly=None):
-    """Build the rocking system of one kind from the options of ``rockarch oas/simulate``.
+    """Build a rocking structure of one kind: a block, a mechanism or a multi-block assembly.
+
+    The same options as ``rockarch simulate/oas --system KIND``; each kind takes its own
+    (another kind's option is a ValueError that says so). The result is what
+    :func:`simulate`, :func:`batch`, :func:`rockarch.oas` and the site, fragility and design
+    functions take. Theory: docs/theory.md §1 (block), §3 and §5 (mechanisms), §6, §9, §10
+    (assemblies).
 
     Parameters
     ----------
     kind : str
-        One of :data:`KINDS`.
-    alpha, p, width, height :
-        block: slenderness [rad] and frequency parameter [1/s], or full width and height
-        [m]; frame: column slenderness and p of one column (default 1).
-    shape, span, rise, thickness, rise_over_span, thickness_over_span, blocks :
-        fourhinge/mdof: an arch of that shape, at its real size or at span 1; ``blocks``
-        voussoirs (fourhinge: default the continuous arch; mdof: required for an arch).
-    column :
-        mdof: a column instead of an arch, blocks bottom to top as (B, H) or (B, H, x) [m].
-    mass_ratio : frame: lintel mass over the mass of both columns.
-    delta, ap_min : sdof: neutral angle [rad] and limit acceleration [m/s²] (with p).
-    restitution : coefficient of restitution in [0, 1] (default the structure's own law;
-        not for mdof, whose impacts follow from the geometry).
-    g, t_free, h_factor, gap_tol : gravity, free motion after the record, step × p (default
-        per model, :mod:`rockarch.core.constants`), MDOF contact tolerance.
-    friction :
-        mdof: Coulomb friction coefficient of every joint (None: no sliding, the chain
+        One of :data:`KINDS`: ``"block"``, ``"fourhinge"``, ``"frame"``, ``"sdof"``,
+        ``"mdof"``.
+    alpha : float, optional
+        block: slenderness atan(B/H) [rad]; frame: slenderness of the columns [rad].
+    p : float, optional
+        block: frequency parameter sqrt(3g/(4R)) [1/s] (optional: an OAS varies it);
+        frame: p of one column [1/s] (default 1); sdof: p [1/s] (default 1).
+    width, height : float, optional
+        block: full width B and height H [m], instead of alpha and p.
+    shape : str, optional
+        fourhinge/mdof: arch shape, ``"catenary"``, ``"circular"``, ``"pointed"`` or
+        ``"elliptical"``.
+    span, rise, thickness : float, optional
+        fourhinge/mdof: the arch's axis span and rise and its thickness [m].
+    rise_over_span, thickness_over_span : float, optional
+        fourhinge/mdof: the arch at span 1, by ratios [-] (instead of span, rise,
+        thickness).
+    blocks : int, optional
+        fourhinge: voussoirs (default: the continuous arch); mdof: voussoirs of the arch
+        (required for an arch).
+    column : sequence of (B, H) or (B, H, x), optional
+        mdof: a column instead of an arch, blocks bottom to top (x: the block's
+        horizontal centre, default 0) [m].
+    mass_ratio : float, optional
+        frame: lintel mass over the mass of both columns [-].
+    delta, ap_min : float, optional
+        sdof: neutral angle [rad] and limit acceleration ap,min [m/s²] (with ``p``).
+    restitution : float, optional
+        Coefficient of restitution in [0, 1] (default: the structure's own impact law; not
+        for mdof, whose impacts follow from the geometry).
+    g : float
+        Acceleration of gravity [m/s²] (default 9.81).
+    t_free : float
+        Free motion simulated after the record ends before "safe" is declared [s]
+        (default 10).
+    h_factor : float, optional
+        Time step × p [-] (default per model, :mod:`rockarch.core.constants`).
+    gap_tol : float
+        mdof: contact tolerance as a fraction of the thinnest joint [-].
+    friction : float, optional
+        mdof: Coulomb friction coefficient of every joint [-] (None: no sliding, the chain
         model bit for bit); ``ap_min`` is then the friction-aware collapse acceleration
         (docs/theory.md Eq. (10.4); one block: min(mu, B/H)·g).
-    spans, pier_height, pier_width, pier_blocks, abutments :
-        mdof: the arch on piers (spans 1) or a bridge of ``spans`` equal arches
+    spans, pier_height, pier_width, pier_blocks, abutments : optional
+        mdof: the arch on piers (``spans`` 1) or a bridge of ``spans`` equal arches; pier
+        height and width [m], blocks per pier, abutments instead of end piers
         (:func:`rockarch.mdof.builders.bridge`).
-    wall, block : mdof: a wall in running bond of (rows, columns) blocks (B, H) [m].
-    colonnade, block, bay, lintel : mdof: that many columns (B, H) [m], ``bay`` [m] apart,
-        under a lintel of depth ``lintel`` [m] (2 columns: a trilithon).
-    assembly : mdof: a JSON file (or its dict) of convex blocks
+    wall : (int, int), optional
+        mdof: a wall in running bond of (rows, columns) blocks of size ``block``.
+    block : (float, float), optional
+        mdof: the (B, H) of a wall's or a colonnade's blocks [m].
+    colonnade : int, optional
+        mdof: that many columns of size ``block``, ``bay`` [m] apart, under a lintel of
+        depth ``lintel`` [m] (2 columns: a trilithon).
+    bay, lintel : float, optional
+        mdof: column spacing and lintel depth of a colonnade [m].
+    assembly : path or dict, optional
+        mdof: a JSON file (or its dict) of convex blocks
         (:mod:`rockarch.mdof.assembly_file`).
 
     Returns
     -------
     BlockSystem, MechanismSystem or MDOFSystem
+        ``BlockSystem`` for ``"block"``, ``MechanismSystem`` for ``"fourhinge"``,
+        ``"frame"`` and ``"sdof"``, ``MDOFSystem`` for ``"mdof"``; each has ``name``,
+        ``ap_min`` [m/s²] and ``p_ref`` [1/s] (None for a block given by alpha alone).
+
+    Raises
+    ------
+    TypeError
+        If ``kind`` is not a string or an option has the wrong type.
+    ValueError
+        If ``kind`` is unknown, a required option is missing, an option does not apply to
+        ``kind``, a value is out of range, or the arch has no four-hinge mechanism.
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> blk = ra.system("block", width=0.4, height=2.0)
+    >>> round(blk.alpha, 4), round(blk.p, 3), round(blk.ap_min, 3)
+    (0.1974, 2.686, 1.962)
+    >>> arch = ra.system("fourhinge", shape="circular", span=10, rise=2.89, thickness=0.35)
+    >>> arch.name
+    'four-hinge circular arch l=10 f=2.89 d=0.35'
     """
     if not isinstance(kind, str) or kind not in KINDS:
         raise (ValueError if isinstance(kind, str) else TypeError)(
@@ -557,11 +616,56 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
 
 def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None,
              check_step: bool | None = None) -> Response:
-    """One time history: ``sys_`` at frequency parameter p (None: its own size) on the
-    motion's shape scaled to PGA = ratio·ap_min (docs/theory.md Eq. 2.1).
+    """One time history of a system on a ground motion scaled to PGA = ratio·ap,min.
 
-    ``check_step`` (MDOF systems only): rerun the history at h/2 and report whether it is
-    sensitive to the time step (:meth:`MDOFSystem.simulate`; None: its default).
+    The motion's shape is scaled so that its peak |a_g| is ratio·ap,min (docs/theory.md
+    Eq. (2.1)); the structure rocks until it overturns (Eqs. (1.5), (3.5)) or comes to rest
+    after the motion and a free motion of ``t_free`` (a setting of :func:`system`).
+
+    Parameters
+    ----------
+    sys_ : BlockSystem, MechanismSystem or MDOFSystem
+        The structure, from :func:`system`.
+    motion : GroundMotion
+        The ground motion (:func:`rockarch.pulse`, :func:`rockarch.read_record`,
+        :func:`rockarch.el_centro`); its amplitude is replaced by ratio·ap,min [m/s²].
+    ratio : float
+        Peak ground acceleration over the structure's ap,min [-], >= 0 (one number; for
+        many, :func:`batch` or :func:`rockarch.oas`).
+    p : float, optional
+        Frequency parameter [1/s] to simulate at: a block of that p, any other structure
+        scaled to it (same shape, same ap,min). None: the structure as built (a block built
+        from ``alpha`` alone has no p: give one).
+    check_step : bool, optional
+        MDOF systems only: rerun the history at half the time step and report in
+        ``step_sensitive`` whether the verdict depends on it (:meth:`MDOFSystem.simulate`;
+        None: its default, docs/mdof.md).
+
+    Returns
+    -------
+    Response
+        ``overturned``, ``t_overturn`` [s] (None if safe), ``max_rotation_ratio`` [-],
+        ``impacts``, ``t`` [s] and the kind's own histories (``BlockResponse``: ``theta``
+        [rad]; ``MechanismResponse``: ``u`` [rad]; ``MDOFResponse``: ``q``, ``joints``):
+        see :class:`rockarch.Response`.
+
+    Raises
+    ------
+    TypeError
+        If ``sys_`` is not a system, ``motion`` not a GroundMotion, or ``ratio`` not one
+        number.
+    ValueError
+        If ``ratio`` or ``p`` is out of range, a block has no p, ``check_step`` is given
+        for a system that is not MDOF, or the history exceeds the work limits
+        (docs/limits.md).
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> r = ra.simulate(ra.system("block", alpha=0.1), ra.pulse("sine", period=0.5),
+    ...                 p=2.0, ratio=6.0)
+    >>> r.overturned, round(r.t_overturn, 2)
+    (True, 1.6)
     """
     check_system(sys_)
     check_motion(motion)
@@ -575,7 +679,47 @@ def simulate(sys_, motion: GroundMotion, *, ratio: float, p: float | None = None
 
 
 def batch(sys_, motion: GroundMotion, p, ratio) -> Batch:
-    """Many verdicts of ``sys_`` on one motion: (p, ratio) broadcast, run in parallel."""
+    """Verdicts of many simulations of one system on one motion, (p, ratio) broadcast.
+
+    Each pair is one run as :func:`simulate` would do it (the motion scaled to
+    ratio·ap,min, the structure at p), without the time histories; the runs go in
+    parallel on numba threads.
+
+    Parameters
+    ----------
+    sys_ : BlockSystem, MechanismSystem or MDOFSystem
+        The structure, from :func:`system`.
+    motion : GroundMotion
+        The ground motion; only its shape matters.
+    p : float or array-like
+        Frequency parameters [1/s], each within [1e-3, 1e4].
+    ratio : float or array-like
+        Peak ground acceleration over ap,min [-], each in [0, 1e6]; broadcast with ``p`` by
+        numpy's rules (e.g. ``p[:, None]`` and ``ratio`` for a grid).
+
+    Returns
+    -------
+    Batch
+        Arrays shaped like the broadcast (p, ratio): ``overturned`` (bool),
+        ``t_overturn`` [s] (NaN where safe), ``max_rotation_ratio`` [-], ``impacts``, and
+        ``extras`` (MDOF: ``open_joints_max``, ``lcp_failures``).
+
+    Raises
+    ------
+    TypeError
+        If ``sys_`` is not a system or ``motion`` not a GroundMotion.
+    ValueError
+        If p and ratio do not broadcast together, or a value is out of range.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import rockarch as ra
+    >>> b = ra.batch(ra.system("block", alpha=0.1), ra.pulse("sine", period=0.5),
+    ...              p=np.array([1.0, 2.0])[:, None], ratio=[1.0, 3.0, 6.0])
+    >>> b.overturned.tolist()
+    [[False, False, False], [False, False, True]]
+    """
     check_system(sys_)
     check_motion(motion)
     return sys_.batch(motion, numbers("p", p), numbers("ratio", ratio))

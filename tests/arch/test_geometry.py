@@ -1,4 +1,4 @@
-"""Arch geometry and voussoir discretisation (physics note Sect. 4)."""
+"""Arch geometry and voussoir discretisation (docs/theory.md §4)."""
 
 import math
 

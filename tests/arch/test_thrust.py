@@ -1,4 +1,4 @@
-"""Thrust-line limit analysis (physics note Sect. 4; paper Eq. 3–9)."""
+"""Thrust-line limit analysis (docs/theory.md §4; paper Eqs. 3–9)."""
 
 import numpy as np
 import pytest

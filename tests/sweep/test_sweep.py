@@ -162,6 +162,20 @@ def test_bad_executor_input(kwargs, match):
         sweep.Executor(**kwargs)
 
 
+def test_bare_dask_string_says_what_to_give():
+    """executor="dask" (the docstring once offered it) names the two Executor objects that
+    make a Dask sweep, before any simulation runs."""
+    for call in (lambda: spectra.compute_oas(systems.BlockSystem(alpha=0.2),
+                                             mo.pulse("sine", period=0.6), [1.0], [1.0, 2.0],
+                                             executor="dask"),
+                 lambda: sweep.Executor("dask")):
+        with pytest.raises(ValueError) as err:
+            call()
+        msg = str(err.value)
+        assert "Executor(dask_workers=n)" in msg and 'Executor(scheduler="tcp://' in msg
+        assert "rockarch.core.sweep" in msg
+
+
 def test_unwritable_store(tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("x")

@@ -1,4 +1,6 @@
-"""The four-hinge mechanism of an arch: exact linkage kinematics, Bv, Bh, A, delta, p (Sect. 5–6).
+"""The four-hinge mechanism of an arch: exact linkage kinematics, Bv, Bh, A, delta, p.
+
+Theory: docs/theory.md §3 (SDOF mechanisms) and §5 (the four-hinge mechanism).
 
 Hinges H1 < H2 < H3 < H4 (left to right, from the limit analysis); rigid parts 1 = H1–H2,
 2 = H2–H3, 3 = H3–H4; the voussoirs outside H1–H4 stay on the ground. The coordinate u is the
@@ -301,7 +303,9 @@ def mechanism_from_hinges(v: Voussoirs, hinges, *, direction: int = 1, g: float 
 
 @dataclass(frozen=True)
 class ArchMechanism:
-    """Critical (optimal) four-hinge mechanism of an arch and its dynamic parameters (Eq. 12–14).
+    """Critical (optimal) four-hinge mechanism of an arch and its dynamic parameters.
+
+    Paper Eqs. 12–14; docs/theory.md Eqs. (3.3)–(3.5) and (5.2).
 
     Attributes
     ----------
@@ -323,7 +327,7 @@ class ArchMechanism:
         end part next to the extrados inner hinge (``end_part`` 1 = H1–H2 or 3 = H3–H4),
         docs/theory.md Eq. (5.4).
     p : sqrt(Bv/(A*delta)), 1/s (on the coordinate u).
-    c1..c4, c3p : constants of Eq. 14 / Table 1 (see :func:`analyse`); c4 in Table 1's
+    c1..c4, c3p : constants of paper Eq. 14 / Table 1 (see :func:`analyse`); c4 in Table 1's
         convention (delta_end), c4_u = d/(delta*l) on the coordinate u.
     """
 
@@ -409,7 +413,7 @@ def _check_four_bar(res: ThrustResult) -> None:
 
 def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: int = 1
             ) -> ArchMechanism:
-    """Limit analysis + four-hinge mechanism + p, delta, ap_min and Eq. 14 constants.
+    """Limit analysis + four-hinge mechanism + p, delta, ap_min and paper Eq. 14 constants.
 
     Parameters
     ----------
@@ -423,7 +427,7 @@ def analyse(arch: Arch, blocks: int | None = None, *, g: float = G, direction: i
 
     Notes
     -----
-    Eq. 14 (docs/theory.md Eq. 5.2): c1 = g/(p² f), c2 = ap_min f²/(g d l), c4 = d/(delta l),
+    Paper Eq. 14 (docs/theory.md Eq. 5.2): c1 = g/(p² f), c2 = ap_min f²/(g d l), c4 = d/(delta l),
     with l the span, f the rise of the axis and d the thickness (the mean joint length if it
     varies). c4 uses Table 1's delta, the rotation of the end part next to the extrados inner
     hinge at the neutral configuration (Eq. 5.4); c4_u uses the coordinate u's delta. c3 and c3p are

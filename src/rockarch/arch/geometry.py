@@ -67,7 +67,7 @@ _DENSE = 8192  # samples of the parametric axis used to build the arc-length map
 
 @dataclass(frozen=True)
 class Arch:
-    """An arch: an axis from (0, 0) to (span, 0) and a thickness normal to it (Sect. 4).
+    """An arch: an axis from (0, 0) to (span, 0) and a thickness normal to it (docs/theory.md §4).
 
     Build one with :func:`catenary`, :func:`weighted_catenary`, :func:`circular`,
     :func:`pointed`, :func:`elliptical`, :func:`polyline` or :func:`from_contour`.
@@ -238,7 +238,7 @@ def _thickness_arg(thickness, span: float | None = None) -> float | Callable:
 
 
 def catenary(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
-    """Catenary arch, mass uniform along the arc: y = f + a - a*cosh((x - l/2)/a) (Sect. 4)."""
+    """Catenary arch, mass uniform along the arc: y = f + a - a*cosh((x - l/2)/a) (Eq. (4.4))."""
     span, rise = _span_rise(span, rise)
     return Arch("catenary", span, rise, _thickness_arg(thickness, span),
                 _catenary_axis(span, rise),
@@ -246,7 +246,10 @@ def catenary(span: float, rise: float, thickness, *, mass_model: str = "voussoir
 
 
 def circular(span: float, rise: float, thickness, *, mass_model: str = "voussoir") -> Arch:
-    """Circular (segmental up to semicircular) arch from span and rise of the axis (Sect. 8)."""
+    """Circular (segmental up to semicircular) arch from span and rise of the axis.
+
+    The arch of the paper's Sect. 8 is one.
+    """
     span, rise = _span_rise(span, rise)
     return Arch("circular", span, rise, _thickness_arg(thickness, span),
                 _circular_axis(span, rise),
@@ -288,8 +291,58 @@ PLAUSIBLE_SPAN = 300.0
 
 def make_arch(shape: str, span: float, rise: float, thickness, *,
               mass_model: str = "voussoir") -> Arch:
-    """Build an arch of one of :data:`SHAPES` by name (a span above
-    :data:`PLAUSIBLE_SPAN` warns: millimetres?)."""
+    """Build an arch of one of :data:`SHAPES` by name, from the span and rise of its axis.
+
+    The arch for :func:`rockarch.system` ``("fourhinge"|"mdof", ...)`` and the arch
+    functions (limit analysis, replacement catenary, design); geometry in docs/theory.md §4
+    and docs/arch.md.
+
+    Parameters
+    ----------
+    shape : str
+        ``"catenary"`` (:func:`catenary`), ``"circular"`` (segmental up to semicircular,
+        :func:`circular`), ``"pointed"`` (two-centred, rise > span/2, :func:`pointed`) or
+        ``"elliptical"`` (semi-elliptical, :func:`elliptical`).
+    span : float
+        Span of the axis, springing to springing [m].
+    rise : float
+        Rise of the axis above the springings [m]; rise/span within
+        :data:`RISE_OVER_SPAN` and the shape's own limits.
+    thickness : float, array-like or callable
+        Thickness normal to the axis [m]: a number (uniform), values spaced evenly along
+        the axis from springing to springing, or a function of the normalised arc length
+        sigma in [0, 1] (a pointed arch takes a number only).
+    mass_model : str
+        ``"voussoir"`` (default: the true voussoir polygons, uniform density) or ``"axis"``
+        (the same mass lumped on the axis as a line mass); see
+        :mod:`rockarch.arch.geometry`. (``"weights"`` needs weights: use
+        :func:`rockarch.arch.funicular.weighted_catenary`.)
+
+    Returns
+    -------
+    Arch
+        Axis from (0, 0) to (span, 0), thickness, mass model.
+
+    Raises
+    ------
+    TypeError
+        If ``shape`` is not a string, or a number is of the wrong type.
+    ValueError
+        If ``shape`` is not one of :data:`SHAPES`, span, rise or thickness is out of range,
+        or the thickness does not fit the shape.
+
+    Warns
+    -----
+    UnitsWarning
+        If the span exceeds :data:`PLAUSIBLE_SPAN` (sizes in millimetres?).
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> arch = ra.make_arch("circular", span=10.0, rise=2.89, thickness=0.35)
+    >>> arch.shape, arch.span, arch.uniform_thickness
+    ('circular', 10.0, 0.35)
+    """
     builders = {"catenary": catenary, "circular": circular, "pointed": pointed,
                 "elliptical": elliptical}
     if not isinstance(shape, str):

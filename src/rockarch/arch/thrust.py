@@ -184,7 +184,7 @@ def _validate_direction(direction: int) -> int:
 
 def limit_analysis(arch: Arch | Voussoirs, blocks: int | None = None, *, g: float = G,
                    direction: int = 1) -> ThrustResult:
-    """Largest horizontal multiplier lambda with an admissible thrust line (Sect. 4, Eq. 7–9).
+    """Largest horizontal multiplier lambda with an admissible thrust line (Eqs. (4.1)–(4.3)).
 
     Parameters
     ----------
@@ -246,12 +246,13 @@ def _too_thin_message(v: Voussoirs) -> str:
 
 def minimum_thickness(arch: Arch, lambda_: float = 0.0, *, blocks: int | None = None,
                       direction: int = 1, rtol: float = 1e-7) -> float:
-    """Smallest uniform thickness of ``arch``'s axis with an admissible thrust line (Sect. 4).
+    """Smallest uniform thickness of ``arch``'s axis with an admissible thrust line.
 
-    Gravity only (``lambda_ = 0``) or with a horizontal multiplier ``lambda_`` (ground
-    acceleration lambda_*g). The mass model and axis of ``arch`` are kept; its own thickness is
-    ignored. Root finding on lambda_max(d) - lambda_ (brentq), with a feasibility bisection
-    where the LP is infeasible. Default blocks: 1000 (the continuous limit to ~1e-6).
+    The limit analysis of docs/theory.md §4, gravity only (``lambda_ = 0``) or with a
+    horizontal multiplier ``lambda_`` (ground acceleration lambda_*g). The mass model and
+    axis of ``arch`` are kept; its own thickness is ignored. Root finding on
+    lambda_max(d) - lambda_ (brentq), with a feasibility bisection where the LP is
+    infeasible. Default blocks: 1000 (the continuous limit to ~1e-6).
 
     Raises ValueError if even the thickest arch the axis can hold is not enough.
     """

@@ -26,7 +26,9 @@ from rockarch.core.validate import P_MAX, P_MIN, RATIO_MAX, numbers
 
 @dataclass(frozen=True, kw_only=True)
 class Response:
-    """The outcome of one simulation (Eq. 3 of docs/theory.md); subclasses add histories.
+    """The outcome of one simulation: the verdict of docs/theory.md Eqs. (1.5) and (3.5).
+
+    Subclasses add the kind's own time histories.
 
     Attributes
     ----------
@@ -37,11 +39,28 @@ class Response:
     t : ndarray
         Recorded times [s].
     overturned : bool
+        True if the structure collapsed: a block's |theta| reached alpha (Eq. (1.5)), a
+        mechanism's |u| reached its neutral angle delta (Eq. (3.5)), an MDOF assembly
+        passed the frozen-configuration collapse test of docs/mdof.md.
     t_overturn : float or None
+        Time of the collapse, on the time axis of the ground motion (t = 0 at its first
+        sample) [s]; None if the structure did not collapse.
     max_rotation_ratio : float
+        Largest rotation over the rotation at which the structure overturns [-]:
+        max |theta|/alpha for a block, max |u|/delta for an SDOF mechanism, the MDOF
+        reference rotation over delta_ref for an assembly. 1 at collapse; a value below 1
+        tells how close a safe run came.
     impacts : int
+        Number of impacts (a block or mechanism returning to its rest position, an MDOF
+        joint closing).
     t_end : float
         Time at which the simulation stopped (rest, collapse or end of free motion) [s].
+
+    Notes
+    -----
+    :meth:`to_dict` also returns ``max_theta_over_alpha``, the same number as
+    ``max_rotation_ratio`` under its earlier name (kept for scripts that read the CLI's
+    ``--json`` output).
     """
 
     system: str

@@ -709,16 +709,54 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
 
 
 def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
-    """Read a record by its file type: ``.AT2`` (or a PEER header under any name) as PEER, a
-    file that opens with ``KEY: value`` lines giving NDATA and SAMPLING_INTERVAL_S as ESM/ITACA
-    ASCII, one whose first line
-    is ``Origin Time ...`` as K-NET / KiK-net ASCII, one whose first line ends with
-    ``(Format v01.20 with 13 text lines)`` as COSMOS (``FILE#N``: its channel N, of a file
-    that holds several), anything else as two-column text.
+    """Read one ground-motion record (acceleration history) from a file, by its format.
 
-    ``units`` applies to two-column files (default m/s2, with a :class:`UnitsWarning` if
-    the file's peak is at most :data:`G_LIKE_PEAK`, plausible in g too); the other formats
-    state their own.
+    The format is recognised from the file: ``.AT2`` (or a PEER header under any name) as
+    PEER NGA; a file that opens with ``KEY: value`` lines giving NDATA and
+    SAMPLING_INTERVAL_S as ESM/ITACA ASCII; one whose first line is ``Origin Time ...`` as
+    K-NET / KiK-net ASCII; one whose first line ends with ``(Format v01.20 with 13 text
+    lines)`` as COSMOS; anything else as two-column text (time [s], acceleration). See
+    docs/sites.md, "Record suites".
+
+    Parameters
+    ----------
+    path : str or path
+        The record file. ``FILE#N``: channel N of a COSMOS file that holds several.
+    units : str, optional
+        Acceleration units of a two-column file: ``"m/s2"`` (default), ``"g"``,
+        ``"cm/s2"`` (or ``"gal"``), ``"mm/s2"``. The other formats state their own, and
+        ``units`` does not apply to them.
+
+    Returns
+    -------
+    GroundMotion
+        Times ``t`` [s] (uniform step) and accelerations ``a`` [m/s²], converted from the
+        file's units; ``name`` (file name and, where the header gives them, event and
+        station) and ``meta`` (the header's metadata).
+
+    Raises
+    ------
+    TypeError
+        If ``path`` is not a path or ``units`` not a string.
+    ValueError
+        If the file does not exist, is unreadable or malformed (the message names the file
+        and line), has a non-uniform time step, more samples than
+        :func:`rockarch.core.limits.max_samples`, unknown ``units``, is an older CSMIP
+        ``.V1``/``.V2`` file, or ``#N`` names a channel of a file that is not COSMOS.
+
+    Warns
+    -----
+    UnitsWarning
+        A two-column file read without ``units`` whose peak is at most
+        :data:`G_LIKE_PEAK` (plausible in g too) or above :data:`MAX_PLAUSIBLE_PGA` (5 g).
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> from rockarch.motion.records import bundled_record_path
+    >>> m = ra.read_record(bundled_record_path(180))
+    >>> round(m.pga, 3), round(float(m.t[1] - m.t[0]), 3)
+    (2.754, 0.01)
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a file path (str or Path), got {type(path).__name__}")
@@ -775,7 +813,33 @@ def bundled_record_path(component: int = 180) -> Path:
 
 
 def el_centro(component: int = 180) -> GroundMotion:
-    """Bundled demo record: El Centro 1940, component 180° (default) or 270°
-    (PEER NGA-West2 RSN6). See ``rockarch/motion/data/PROVENANCE.md`` for source and citation.
+    """The bundled demo record: El Centro 1940 (Imperial Valley-02), one horizontal component.
+
+    PEER NGA-West2 RSN6, El Centro Array #9, read from the package's ``.AT2`` file (see
+    ``rockarch/motion/data/PROVENANCE.md`` for its source and citation); no download.
+
+    Parameters
+    ----------
+    component : int
+        180 (default: the 180° component, PGA 2.754 m/s² = 0.281 g) or 270 (PGA 2.07 m/s²
+        = 0.211 g).
+
+    Returns
+    -------
+    GroundMotion
+        Acceleration [m/s²] sampled every 0.01 s over 53.7 s (180) or 53.5 s (270), named
+        after the file, the event and the station.
+
+    Raises
+    ------
+    ValueError
+        If ``component`` is not 180 or 270.
+
+    Examples
+    --------
+    >>> import rockarch as ra
+    >>> m = ra.el_centro(270)
+    >>> round(m.pga / 9.80665, 3), round(float(m.t[-1]), 1)
+    (0.211, 53.5)
     """
     return read_at2(bundled_record_path(component))

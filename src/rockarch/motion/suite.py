@@ -488,7 +488,7 @@ def _read_all(files, units, g_like: list):
 
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
                search_results: str | Path | None = None, vertical: bool = False) -> Suite:
-    """Read a suite from files and folders (see :func:`record_files`).
+    """Read a suite of ground-motion records from files and folders (see :func:`record_files`).
 
     Parameters
     ----------
@@ -508,6 +508,20 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         ``UP``); by default they are left out and listed in ``notes`` (rocking structures
         are assessed under horizontal ground motion). KiK-net borehole records (a motion
         at depth) are left out and listed in ``notes`` too.
+
+    Returns
+    -------
+    Suite
+        The records in file-name order (``suite.names``, ``suite.motions`` in m/s², and per
+        record ``suite[k]`` its path and metadata: event, station, component, magnitude,
+        rrup [km], vs30 [m/s], ...), and ``suite.notes``: records left out or suspicious.
+
+    Raises
+    ------
+    ValueError
+        If a source does not exist or holds no record, a record cannot be read (see
+        :func:`rockarch.motion.records.read_record`), several search-results files are
+        found, or ``apply_scale`` has no csv or a record without a csv row.
 
     Notes
     -----

@@ -112,7 +112,7 @@ def reproduce(out, *, quick: bool = False,
     parts = []
     _background(out, quick, parts, log)
     log("Table 1 …")
-    parts.append("<h2>Table 1: catenary arches, constants of Eq. 14</h2>"
+    parts.append("<h2>Table 1: catenary arches, constants of paper Eq. 14</h2>"
                  "<p>paper / rockarch (deviation); continuous (critical optimal) "
                  "mechanism, true voussoir polygons, exact kinematics.</p>"
                  + _table1_html(paper.table1_rows()))
@@ -131,7 +131,7 @@ def reproduce(out, *, quick: bool = False,
                  "thickest catenary band inside the arch, springings free on its springing "
                  "joints (docs/theory.md Eqs. 7.3–7.7). The paper's d/l mixes spans: 0.0207 "
                  "is per l′, 0.0293 per 10 m. The −1.9 % in p of the equivalent replacement "
-                 "is the paper's own: its Eq. 15 uses f = 2.89 m, and its c1 is 2.8 % below "
+                 "is the paper's own: paper Eq. 15 uses f = 2.89 m, and its c1 is 2.8 % below "
                  "ours (docs/validation.md).</p>" + _table2_html(t2))
     log("Fig. 15 …")
     rows15 = paper.fig15(out / "fig15.png", n_p=12 if quick else 40)

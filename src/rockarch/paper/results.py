@@ -36,7 +36,7 @@ from rockarch.spectra import site
 SIGNALS = ("sine", "square", "step")
 
 def table1_rows(g: float = G) -> list[dict]:
-    """Table 1: paper vs rockarch for every catenary arch (continuous mechanism, Eq. 14).
+    """Table 1: paper vs rockarch for every catenary arch (continuous mechanism, paper Eq. 14).
 
     ``c4`` is in Table 1's convention (docs/theory.md Eq. 5.4), ``c4_u`` on the dynamics'
     coordinate u (the other end part). ``c1c4_eq12`` is the delta-free product

@@ -112,7 +112,7 @@ def _side_tables(res: ArchMechanism, e_close: float, n: int):
 def fourhinge_mechanism(arch: Arch, blocks: int | None = None, *, g: float = G,
                         restitution: float | None = None, name: str | None = None,
                         n: int = TABLE_INTERVALS) -> SDOFMechanism:
-    """The arch's four-hinge mechanism in both directions, ready to simulate (Sect. 5–6).
+    """The arch's four-hinge mechanism in both directions, ready to simulate (docs/theory.md §5).
 
     ``blocks=None``: the critical optimal mechanism (hinges at the maximum eccentricities of
     the continuous arch); ``blocks=N``: the critical mechanism of the N-voussoir arch.

@@ -37,6 +37,7 @@ import numpy as np
 from rockarch.motion.intensity import mean_period
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.suite import as_motions
+from rockarch.spectra import oas as spectra
 from rockarch.spectra import site
 
 if TYPE_CHECKING:  # xarray (half a second to import) where a dataset is made or read
@@ -203,9 +204,16 @@ def characteristic(ds: xr.Dataset, motions, *, percentile: float | None = None
     out["x"].attrs.update(units="1", long_name="p·Tm")
     for name in ("tm", "t_impulse", "t_moment"):
         out[name].attrs.update(units="s")
+    out["simplified_record"].attrs.update(units="1", long_name="simplified overturning "
+                                          "ap/ap,min of each record")
+    for name, what in (("simplified", "simplified overturning ap/ap,min"),
+                       ("normalised", "normalised overturning ap/ap,min at p·Tm_site"),
+                       ("normalised_curve", "overturning ap/ap,min over x = p·Tm")):
+        out[name].attrs.update(units="1", long_name=f"{q:g} percentile of the records' "
+                               f"{what}")
     out.attrs.update(tm_site=tm_site, percentile_characteristic=q,
                      impact_coeff=IMPACT_COEFF)
-    return out
+    return spectra.note_units(out)
 
 
 def skill(ds: xr.Dataset) -> dict:
@@ -264,5 +272,6 @@ def site_from_records(suite, *, percentile: float = 50.0, executor=None, store=N
     a line per record done, as in :func:`rockarch.spectra.site.site_oas`)."""
     ds = site.site_oas(suite.motions, DESIGN_P, DESIGN_RATIO, percentile=percentile,
                        progress=progress, executor=executor, store=store, log=log)
-    ds["record_name"] = (("record",), np.array(suite.names, dtype=str))
+    ds["record_name"] = (("record",), np.array(suite.names, dtype=str),
+                         ds["record_name"].attrs)
     return characteristic(ds, suite.motions)

@@ -1,11 +1,11 @@
 """Overturning acceleration spectra (OAS): the safe/unsafe map over p × ap/ap,min.
 
 For one ground-motion *shape* (a pulse of fixed period, or one record), a structure with
-frequency parameter p is excited with peak ground acceleration ap = ratio·ap,min (physics
-note section 2, paper Fig. 2). The OAS is the boolean map ``overturned(p, ratio)``; its
-boundary is the lowest overturning ratio per p, refined by bisection below the first
-overturning grid cell. The map is kept whole: safe islands above the boundary (real for
-records) are never filled in.
+frequency parameter p is excited with peak ground acceleration ap = ratio·ap,min
+(docs/theory.md §2, Eq. (2.1); paper Fig. 2). The OAS is the boolean map
+``overturned(p, ratio)``; its boundary is the lowest overturning ratio per p (Eq. (2.2)),
+refined by bisection below the first overturning grid cell. The map is kept whole: safe
+islands above the boundary (real for records) are never filled in.
 """
 
 from __future__ import annotations
@@ -40,6 +40,31 @@ class OASSystem(Protocol):
         """Parameters to store with the result (plain numbers and strings)."""
 
 
+#: Units of the numeric dataset attributes rockarch writes, by name without a ``system_``
+#: prefix ("1": dimensionless). A file lists those it holds in its ``attribute_units``.
+ATTR_UNITS = {
+    "alpha": "rad", "delta": "rad", "delta_ref": "rad",
+    "g": "m/s2", "ap_min": "m/s2", "ap_min_assembly": "m/s2", "ap_min_lp": "m/s2",
+    "p": "1/s", "p_ref": "1/s", "p_assembly": "1/s", "p_column": "1/s",
+    "t_free": "s", "tm_site": "s",
+    "size_ref": "m", "span": "m", "rise": "m", "thickness": "m", "pier_height": "m",
+    "pier_width": "m",
+    "restitution": "1", "e_plus": "1", "e_minus": "1", "h_factor": "1", "eps_rest": "1",
+    "gap_tol": "1", "friction_min": "1", "tolerance": "1", "c1": "1", "c2": "1",
+    "impact_coeff": "1", "percentile": "%", "percentile_characteristic": "%",
+}
+
+
+def note_units(ds: xr.Dataset) -> xr.Dataset:
+    """Set ``ds.attrs["attribute_units"]``: ``"name: unit; ..."`` for every numeric attribute
+    of :data:`ATTR_UNITS` that ``ds`` holds (SI; "1" dimensionless), so that a file says the
+    units of ``system_alpha``, ``system_g``, ``alpha``, ... itself. Returns ``ds``."""
+    units = [f"{k}: {ATTR_UNITS[k.removeprefix('system_')]}" for k, v in ds.attrs.items()
+             if k.removeprefix("system_") in ATTR_UNITS and not isinstance(v, str)]
+    ds.attrs["attribute_units"] = "; ".join(units)
+    return ds
+
+
 def _grid(name: str, values) -> np.ndarray:
     arr = np.atleast_1d(np.asarray(values, dtype=float))
     if arr.ndim != 1 or arr.size == 0:
@@ -56,7 +81,10 @@ def _grid(name: str, values) -> np.ndarray:
 def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float = TOL,
                 progress: bool | None = None, chunks: int = 32, executor=None,
                 store=None) -> xr.Dataset:
-    """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio`` (Sect. 1).
+    """OAS of ``system`` for the motion's shape on the grid ``p`` × ``ratio``.
+
+    The map of docs/theory.md §2: Eq. (2.1) scales the motion, Eq. (2.2) defines the
+    boundary.
 
     Parameters
     ----------
@@ -77,8 +105,14 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
         split the same way.
     executor : None, str or rockarch.core.sweep.Executor
         Where the chunks run: None (default) in this process with numba threads on every
-        core; ``"serial"``, ``"processes"`` or ``"dask"`` (see :mod:`rockarch.core.sweep`), or an
-        :class:`~rockarch.core.sweep.Executor` to reuse (it is not closed here).
+        core; ``"serial"`` (the same, chunk after chunk) or ``"processes"`` (a pool of local
+        processes, one per core; started and closed here); or an
+        :class:`~rockarch.core.sweep.Executor` to reuse (it is not closed here). Dask needs
+        an Executor object, not the string ``"dask"`` (a ValueError):
+        ``Executor(dask_workers=n)`` starts a ``LocalCluster`` of n worker processes,
+        ``Executor(scheduler="tcp://HOST:PORT")`` connects to a running scheduler; use it
+        as a context manager (``with Executor(dask_workers=4) as ex: compute_oas(...,
+        executor=ex)``) so that the cluster is stopped. See docs/sweeps.md.
     store : None, bool, path or rockarch.core.sweep.Store
         Resumable store of finished chunks (None/False: none; True: the default cache
         directory). A rerun reuses every stored chunk; results are bit-identical.
@@ -143,7 +177,7 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     ds.attrs.update(system=system.name, motion=motion.name,
                     motion_sha256=motion.fingerprint(), rockarch_version=__version__,
                     title=f"OAS of {system.name} for {motion.name}")
-    return ds
+    return note_units(ds)
 
 
 def refine_boundary(run, p, ratio, over, tol, bar, chunks) -> np.ndarray:
@@ -214,8 +248,36 @@ def read_netcdf(path) -> xr.Dataset:
 
 
 def load(path) -> xr.Dataset:
-    """Read an OAS dataset written by :func:`save`."""
+    """Read an OAS dataset written by :func:`save` (``rockarch oas --out``).
+
+    Parameters
+    ----------
+    path : str or path
+        The NetCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset of :func:`compute_oas`, read into memory.
+
+    Raises
+    ------
+    ValueError
+        If the file is missing or not NetCDF, has no ``overturned``/``boundary`` over
+        (p, ratio), or is a rockarch file of another kind (a site OAS, with its ``record``
+        axis: read it with :func:`rockarch.spectra.site.load`).
+    """
     ds = read_netcdf(path)
+    kind = ds.attrs.get("kind")
+    if kind is not None or "record" in ds.dims:
+        what = ("a rockarch site OAS file: read it with rockarch.spectra.site.load"
+                if kind == "rockarch-site-oas" or kind is None
+                else f"a file of kind {kind!r}")
+        raise ValueError(f"{path}: not an OAS file but {what} (an OAS file is written by "
+                         "`rockarch oas --out` or rockarch.spectra.oas.save)")
     if "overturned" not in ds or "boundary" not in ds:
         raise ValueError(f"{path}: not an OAS file (no 'overturned'/'boundary' variables)")
+    if ds["overturned"].dims != ("p", "ratio") or ds["boundary"].dims != ("p",):
+        raise ValueError(f"{path}: not an OAS file ('overturned' is over "
+                         f"{ds['overturned'].dims}, an OAS's over ('p', 'ratio'))")
     return ds

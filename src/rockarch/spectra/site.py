@@ -91,7 +91,9 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
              percentile: float = 50.0, tol: float = OAS_TOL, hashes=None,
              progress: bool | None = None, executor=None, store=None, system=None,
              log: Callable[[str], None] | None = None, **system_kw) -> xr.Dataset:
-    """OAS of every record and the site's envelope and percentile curves (Sect. 9, Eq. 2.2).
+    """OAS of every record and the site's envelope and percentile curves (Eq. (2.2)).
+
+    The site OAS of the paper's design method (paper Sect. 9).
 
     ``motions``: the records, a :class:`rockarch.motion.suite.Suite` or GroundMotions.
 
@@ -162,7 +164,20 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     )
     ds["p"].attrs.update(units="1/s", long_name="frequency parameter p")
     ds["ratio"].attrs.update(units="1", long_name="ap / ap,min")
-    ds["record_pga"].attrs.update(units="m/s2")
+    ds["record"].attrs.update(long_name="record index (its name: record_name)")
+    ds["record_name"].attrs.update(long_name="record name (select by name: "
+                                             "ds.swap_dims(record='record_name'))")
+    ds["record_sha256"].attrs.update(long_name="SHA-256 of the record file (or of its "
+                                               "samples)")
+    ds["record_pga"].attrs.update(units="m/s2", long_name="peak ground acceleration")
+    ds["overturned"].attrs.update(long_name="overturned at (p, ap/ap,min)")
+    ds["boundary"].attrs.update(units="1", long_name="lowest overturning ap/ap,min of each "
+                                "record", tolerance=float(tol))
+    ds["envelope"].attrs.update(units="1", long_name="lowest overturning ap/ap,min over the "
+                                "records")
+    ds["characteristic"].attrs.update(units="1", long_name=f"{float(percentile):g} "
+                                      "percentile of the records' lowest overturning "
+                                      "ap/ap,min")
     ds.attrs.update(kind=KIND, format_version=FORMAT_VERSION, rockarch_version=__version__)
     if not block:  # any structure: its name and parameters, as an OAS file keeps them
         ds.attrs.update({f"system_{k}": (v if not isinstance(v, bool) else int(v))
@@ -172,12 +187,12 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
                         p_axis="the structure scaled to each p (p ~ 1/sqrt(size), same "
                                f"shape); p of the structure as given: {system.p_ref:.6g} 1/s",
                         title=f"site OAS of {len(motions)} record(s), {system.name}")
-        return ds
+        return spectra.note_units(ds)
     ds.attrs.update(alpha=float(alpha), percentile=float(percentile), tolerance=float(tol),
                     t_free=system.t_free, restitution=system.attrs()["restitution"],
                     title=f"site OAS of {len(motions)} record(s), slender block "
                           f"alpha = {alpha:g}")
-    return ds
+    return spectra.note_units(ds)
 
 
 def check_block_site(ds: xr.Dataset, path=None) -> xr.Dataset:

@@ -20,6 +20,11 @@ from rockarch.core.sweep.workers import (
 
 #: Executor modes.
 MODES = ("serial", "processes", "dask")
+#: Why "dask" alone (as a mode string or ``Executor("dask")``) is refused, and what to give.
+DASK_NEEDS = ("mode 'dask' needs a scheduler address or a number of workers: give "
+              "executor=Executor(dask_workers=n) (a LocalCluster of n local workers) or "
+              "executor=Executor(scheduler=\"tcp://HOST:PORT\") (a running scheduler), "
+              "with Executor from rockarch.core.sweep")
 #: Seconds to wait for a Dask scheduler before giving up.
 CONNECT_TIMEOUT = 5.0
 _ADDRESS = re.compile(r"^(tcp|tls)://(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9_.\-]+):(\d{1,5})$")
@@ -134,7 +139,7 @@ class Executor:
         if mode != "dask" and (scheduler is not None or dask_workers is not None):
             raise ValueError(f"mode {mode!r} takes no scheduler or dask workers")
         if mode == "dask" and scheduler is None and dask_workers is None:
-            raise ValueError("mode 'dask' needs a scheduler address or a number of workers")
+            raise ValueError(DASK_NEEDS)
         if mode == "dask" and workers is not None:
             raise ValueError("workers is for local modes; give dask_workers for a "
                              "LocalCluster")
@@ -329,7 +334,11 @@ class Executor:
 
 def as_executor(executor) -> tuple[Executor | None, bool]:
     """(executor, owned): None → (None, False): the plain in-process path; a mode string →
-    a new executor that the caller must close (owned=True); an Executor → itself."""
+    a new executor that the caller must close (owned=True); an Executor → itself.
+
+    The string ``"dask"`` is a ValueError (:data:`DASK_NEEDS`): a Dask executor needs a
+    cluster, given as ``Executor(dask_workers=n)`` or ``Executor(scheduler="tcp://...")``.
+    """
     if executor is None:
         return None, False
     if isinstance(executor, Executor):
