@@ -69,11 +69,6 @@ _CITATION = re.compile(
     r"(?P<paper>paper(?:'s)?\s+)?(?P<what>Eqs?\.|§§?|Sects?\.)\s*"
     r"(?P<nums>\(?\d+(?:\.\d+)?[a-z]?\)?(?:\s*(?:[–,-]|and|to)\s*\(?\d+(?:\.\d+)?[a-z]?\)?)*)",
     flags=re.I)
-#: Citations in files this test's author could not edit (src/rockarch/cli is another change's):
-#: the paper's Eq. 14 written without "paper". Remove the entry once it says "paper Eq. 14".
-_KNOWN = {("cli/archcmd.py", "Eq. 14")}
-
-
 def _theory_labels() -> tuple[set[str], set[str]]:
     """(equation tags, section numbers) of docs/theory.md: ``\\tag*{(2.1)}`` in display
     maths, ``(9.1)`` ending a line in the code blocks, headings ``## 2.`` / ``### 11.2``."""
@@ -109,7 +104,7 @@ def test_every_citation_in_src_is_in_theory():
     found = {(str(p.relative_to(ROOT / "src" / "rockarch")), c)
              for p in SOURCES for c in dangling_citations(p.read_text(encoding="utf-8"),
                                                           eqs, secs)}
-    assert found - _KNOWN == set(), sorted(found - _KNOWN)
+    assert found == set(), sorted(found)
 
 
 def test_dangling_citations_are_found():

@@ -46,7 +46,7 @@ def arch(
     plot: Path = typer.Option(None, help="Write a PNG of the collapse mechanism."),
     json_out: bool = JSON_OPT,
 ) -> None:
-    """Limit acceleration ap,min, four-hinge mechanism (p, delta, hinges) and Eq. 14 constants.
+    """Limit acceleration ap,min, four-hinge mechanism (p, delta, hinges), paper Eq. 14's constants.
 
     Sign convention: lambda >= 0 is the magnitude of the ground acceleration / g; with
     --direction +1 the ground accelerates to the right and the inertia loads push the arch to

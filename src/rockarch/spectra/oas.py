@@ -125,8 +125,6 @@ def compute_oas(system: OASSystem, motion: GroundMotion, p, ratio, *, tol: float
     """
     p = _grid("p", p)
     ratio = _grid("ratio", ratio)
-    if np.any(p <= 0):
-        raise ValueError("p values must be > 0")
     if np.any(ratio < 0):
         raise ValueError("ratio values must be >= 0")
     tol = tolerance("tol", tol)
