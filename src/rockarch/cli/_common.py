@@ -247,7 +247,8 @@ CYCLES_OPT = typer.Option(None, help="Number of cycles of --signal harmonic (def
 RECORD_OPT = typer.Option(None, help="Record file (.AT2, ESM .ASC, K-NET .NS/.EW, "
                           "COSMOS .V2c (FILE#N: channel N of a file of several) or "
                           "two-column time/acc).")
-UNITS_OPT = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, cm/s2.")
+UNITS_OPT = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, cm/s2 "
+                         "(= gal), mm/s2; also written m/s/s, m/s^2, cm/sec2, ...")
 RATIO_OPT = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min.")
 REST_OPT = typer.Option(None, help="Coefficient of restitution in [0, 1] (default: the "
                         "structure's own impact law).")

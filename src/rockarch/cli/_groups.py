@@ -73,7 +73,7 @@ STRUCTURE: Group = (
     ("bay", float, typer.Option(None, help="Colonnade: clear spacing of the columns [m].")),
     ("lintel", float, typer.Option(None, help="Colonnade: lintel depth [m].")),
     ("assembly", Path, typer.Option(None, help="An assembly of convex blocks from a JSON file "
-                                    "(docs/theory.md §10).")),
+                                    "(its format: docs/assemblies.md).")),
 )
 
 #: A multi-block arch by its real dimensions, or (STRUCTURE) any other MDOF structure.
@@ -100,8 +100,8 @@ SYSTEM: Group = (
     ("rise_over_span", float, typer.Option(None, help="fourhinge/mdof: f/l.")),
     ("thickness_over_span", float, typer.Option(None, help="fourhinge/mdof: d/l.")),
     ("blocks", int, typer.Option(None, help="fourhinge: voussoirs (critical mechanism); "
-                                 "default the continuous arch (critical optimal). mdof: "
-                                 "voussoirs (required).")),
+                                 "default the continuous arch (critical optimal). mdof "
+                                 "arch: voussoirs (required for an arch).")),
 ) + STRUCTURE + (
     ("mass_ratio", float, typer.Option(None, help="frame: lintel mass / mass of both "
                                        "columns.")),

@@ -64,7 +64,8 @@ IDA: Group = (
                                          "(.AT2, .ASC, K-NET, .V2c, two-column) or record "
                                          "files; several may follow one --records.")),
     ("more", list[Path], typer.Argument(None, hidden=True)),
-    ("units", str, typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2.")),
+    ("units", str, typer.Option(None, help="Units of two-column records: m/s2 (default), g, "
+                                  "cm/s2 (= gal), mm/s2.")),
     ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
                                       "`rockarch oas`); records safe up to it are "
                                       "censored.")),

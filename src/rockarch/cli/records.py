@@ -22,7 +22,8 @@ app.add_typer(records_app, name="records")
 SOURCES_ARG = typer.Argument(..., help="Record files (.AT2, .ASC, K-NET, .V2c or "
                              "two-column) and/or folders of them (with an optional NGA-West2 "
                              "_SearchResults.csv).")
-UNITS_OPT = typer.Option(None, help="Units of two-column records: m/s2 (default), g, cm/s2.")
+UNITS_OPT = typer.Option(None, help="Units of two-column records: m/s2 (default), g, cm/s2 "
+                         "(= gal), mm/s2; also written m/s/s, m/s^2, cm/sec2, ...")
 APPLY_SCALE_OPT = typer.Option(False, "--apply-scale", help="Multiply each record by the "
                                "scale factor of its _SearchResults.csv row.")
 SEARCH_RESULTS_OPT = typer.Option(None, "--search-results", help="The NGA-West2 metadata "
