@@ -12,7 +12,7 @@ def test_closed_pipe_is_quiet():
     exe = os.path.join(os.path.dirname(sys.executable), "rockarch")
     proc = subprocess.Popen(
         [exe, "oas", "--system", "block", "--alpha", "0.1", "--signal", "sine", "--period",
-         "0.5", "--p-min", "0.5", "--p-max", "10", "--p-steps", "40", "--ratio-steps", "2"],
+         "0.5", "--p", "1,2", "--ratio-steps", "2"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     proc.stdout.close()  # the reader is gone before the command writes its table
     err = proc.stderr.read().decode()
