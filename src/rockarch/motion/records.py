@@ -789,7 +789,8 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     if units is None and motion.pga <= G_LIKE_PEAK:
         warnings.warn(UnitsWarning(
             f"{path.name}: read as m/s² (no units given), but its peak {motion.pga:.3g} is "
-            f"also a plausible PGA in g: give --units m/s2 or --units g"), stacklevel=2)
+            f"also a plausible PGA in g: give --units m/s2 or --units g (units= in Python)"),
+            stacklevel=2)
     elif units is None and motion.pga > MAX_PLAUSIBLE_PGA:
         warnings.warn(UnitsWarning(
             f"{path.name}: read as m/s² (no units given), its PGA {motion.pga:.4g} m/s² = "
