@@ -102,6 +102,11 @@ def _verdict(s: dict) -> None:
     if s["overturned"]:
         typer.echo(f"OVERTURNED at t = {s['t_overturn']:.4f} s after "
                    f"{_count(s['impacts'], 'impact')}")
+        if s.get("open_joints_max") is not None and s["max_rotation_ratio"] < 1.0:
+            typer.echo(f"  (its largest rotation was {s['max_rotation_ratio']:.4f} of the "
+                       "reference angle: the collapse test decided, gravity alone moving a "
+                       "part away from rest or a block slid off its supports; docs/mdof.md, "
+                       "Collapse criterion)")
     else:
         beyond = ("; rotated past the reference angle yet not collapsed: the collapse test "
                   "decides (docs/mdof.md, Collapse criterion)"
