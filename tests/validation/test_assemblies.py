@@ -245,8 +245,13 @@ def test_json_assembly_with_contact_friction():
         assembly_from_dict({**data, "colour": "red"})
     with pytest.raises(ValueError, match="unknown key"):
         assembly_from_dict({**data, "blocks": [{"polygon": _rect(0, 0, 1, 1), "mass": 3}]})
-    with pytest.raises(ValueError, match="friction coefficient"):
+    with pytest.raises(ValueError, match="'friction': friction coefficient"):
         assembly_from_dict({**data, "friction": -1})
+    # a contact's own friction: the error names the contact (before: not which one)
+    bad = {**data, "contacts": [{"blocks": [-1, 0]}, {"blocks": [0, 1], "friction": -0.4}]}
+    with pytest.raises(ValueError, match=r"contact 1 \[0, 1\]: friction coefficient must "
+                                         r"be a finite number > 0, got -0.4"):
+        assembly_from_dict(bad)
 
 
 def test_json_assembly_in_millimetres_warns():

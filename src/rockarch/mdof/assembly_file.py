@@ -92,7 +92,8 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
                              f"unit: only ratios of densities matter), got {d!r}")
     default = data.get("friction") if mu is None else mu
     if default is not None:
-        default = friction_value(default)
+        default = (_named(friction_value, default, f"{source}: 'friction'") if mu is None
+                   else friction_value(default))
     contacts = None
     if "contacts" in data:
         if not isinstance(data["contacts"], list):
@@ -106,7 +107,8 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
                 raise ValueError(f"{source}: contact {k} needs 'blocks': [i, j] (integers, -1 "
                                  "the ground)")
             m = c.get("friction")
-            contacts.append((pair[0], pair[1], None if m is None else friction_value(m)))
+            contacts.append((pair[0], pair[1], None if m is None else
+                             _named(friction_value, m, f"{source}: contact {k} {pair}")))
         contacts = [(i, j, default if m is None else m) for i, j, m in contacts]
     supports = data.get("supports", [])
     if not isinstance(supports, list):
@@ -125,6 +127,14 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
             f"{source}: a block is {largest:.4g} m long: coordinates are in metres "
             "(millimetres? divide them by 1000)"), stacklevel=2)
     return out
+
+
+def _named(check, value, where: str):
+    """``check(value)`` with its ValueError or TypeError prefixed by ``where``."""
+    try:
+        return check(value)
+    except (ValueError, TypeError) as exc:
+        raise type(exc)(f"{where}: {exc}") from None
 
 
 def read_assembly(path, *, mu=None, g: float = G) -> Assembly:
