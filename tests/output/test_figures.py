@@ -219,3 +219,18 @@ def test_mechanism_label_is_on_the_coordinate_of_the_text_output():
         fig = mechanism_figure(res)
         labels = [t.get_text() for t in fig.legends[0].get_texts()]
         assert f"mechanism half way to neutral, u = {0.5 * res.delta:.3g} rad" in labels
+
+
+def test_collapse_figure_of_a_column_is_not_a_sliver_and_its_legend_covers_nothing():
+    # a slender column's mechanism: drawn at least 0.6 as wide as tall (before: a sliver whose
+    # x tick labels ran into each other), the legend below the axes (before: over its top)
+    from rockarch.mdof import column
+    from rockarch.output.collapse_plots import collapse_figure
+
+    fig = collapse_figure(column([(0.3, 1.5), (0.2, 1.0)]))
+    ax = fig.axes[0]
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    assert x1 - x0 >= 0.6 * (y1 - y0) * (1 - 1e-9)
+    fig.canvas.draw()
+    legend = fig.legends[0].get_window_extent()
+    assert legend.y1 <= ax.get_window_extent().y0  # below the axes, over no block

@@ -62,14 +62,22 @@ def collapse_figure(assembly: Assembly, mech: Collapse | None = None):
                 label="sliding joint" if n == 0 else None)
     ax.set_aspect("equal")
     ax.autoscale_view()
+    # a slender structure (a column) is not drawn as a sliver: at least 0.6 as wide as tall
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    if x1 - x0 < 0.6 * (y1 - y0):
+        mid, half = 0.5 * (x0 + x1), 0.3 * (y1 - y0)
+        x0, x1 = mid - half, mid + half
+        ax.set_xlim(x0, x1)
+    # the figure's height follows the drawing's aspect (no empty band above the legend)
+    fig.set_size_inches(7.0, min(max(0.8 * 7.0 * (y1 - y0) / (x1 - x0) + 1.8, 3.0), 7.5))
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     d = "+x" if mech.direction > 0 else "-x"
     ax.set_title(f"{a.name}\ncollapse at ap,min = {mech.ap_min:.4g} m/s² = "
                  f"{mech.lambda_:.4g} g (ground accelerating {d})", fontsize=9)
-    if len(opened) or mech.sliding.any():
-        ax.legend(fontsize=8, loc="upper right")
+    if len(opened) or mech.sliding.any():  # below the axes: it covers no block
+        fig.legend(loc="outside lower center", ncol=2, fontsize=8, frameon=False)
     return fig
 
 
