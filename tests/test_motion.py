@@ -61,3 +61,12 @@ def test_scaling_to_pga_and_mirroring():
 def test_bad_input_is_a_clear_valueerror(call, msg):
     with pytest.raises(ValueError, match=msg):
         call()
+
+
+def test_repr_is_one_line_without_the_samples():
+    # a record's repr printed its 5372 samples (a long screen of numbers in a notebook)
+    from rockarch.motion.records import el_centro
+
+    r = repr(el_centro())
+    assert "\n" not in r and len(r) < 200
+    assert "5372 knots, 53.71 s, PGA 2.754 m/s²" in r

@@ -26,7 +26,7 @@ KNOTS_PER_PERIOD = 1000
 SIGNALS = ("sine", "square", "step", "halfsine", "harmonic", "ricker")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class GroundMotion:
     """Base acceleration a_g(t) [m/s²], linear between knots, zero outside them.
 
@@ -44,6 +44,12 @@ class GroundMotion:
     a: np.ndarray
     name: str = "ground motion"
     meta: dict = field(default_factory=dict, compare=False)
+
+    def __repr__(self) -> str:
+        """One line: the name, the number of knots, the duration and the peak (not the
+        samples, which ``t`` and ``a`` hold)."""
+        return (f"GroundMotion({self.name!r}, {self.t.size} knots, {self.duration:.4g} s, "
+                f"PGA {self.pga:.4g} m/s²)")
 
     def __post_init__(self) -> None:
         t = finite_array("time", self.t, min_len=2)
