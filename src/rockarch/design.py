@@ -182,8 +182,7 @@ def _structure(system, p: float | None) -> tuple[float, bool, float | None]:
     a = getattr(system, "assembly", None)
     if a is None or a.frictionless:
         return float(p), False, None
-    rock = float(a.info.get("ap_min_no_sliding", a.ap_min))
-    return float(p), bool(system.ap_min < rock * (1 - 1e-9)), rock
+    return float(p), a.slides, float(a.info.get("ap_min_no_sliding", a.ap_min))
 
 
 def _safe_ratio(value: float, top: float) -> tuple[float, bool]:

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -547,6 +547,8 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     else:
         _need(kind, delta=delta, ap_min=ap_min)
         mech = mc.generic(1.0 if p is None else p, delta, ap_min, g, restitution)
+        if p is None:  # p is the axis of its maps: its reference 1 1/s is not named
+            mech = replace(mech, name=f"SDOF delta={delta:g} rad, ap,min={ap_min:g} m/s²")
     return MechanismSystem(mech, t_free=t_free, h_factor=sdof_h)
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 import sys
 from pathlib import Path
 
@@ -75,9 +74,7 @@ def oas(
             "boundary": ds["boundary"].values,
         })
         return
-    # a generic SDOF's own p (default 1) is not the OAS's: p is the axis of the table
-    name = re.sub(r"^SDOF p=\S+ 1/s, ", "SDOF ", sysobj.name)
-    typer.echo(f"OAS of {name} for {shape_motion.name}")
+    typer.echo(f"OAS of {sysobj.name} for {shape_motion.name}")
     typer.echo("\n".join(boundary_table(ds["p"].values, ds["boundary"].values, ratios[-1])))
     for path in (out, plot):
         if path is not None:

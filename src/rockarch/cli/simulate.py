@@ -227,12 +227,12 @@ def _count(n: int, word: str) -> str:
 def _mdof_header(a) -> str:
     fr = "" if a.frictionless else f", friction {np.min(a.mu):g}" + (
         "" if np.ptp(a.mu) == 0 else f"..{np.max(a.mu):g}")
-    rock = a.info.get("ap_min_no_sliding", a.ap_min)
     # an arch's reference is its four-hinge mechanism, on the dynamics' coordinate u
     d = "delta_u" if "hinges" in a.info else "delta"
-    ref = (f"p={a.p_ref:.4g} 1/s, {d}={a.delta_ref:.4g} rad" if a.ap_min >= rock * (1 - 1e-9)
-           else f"its collapse mechanism slides; rocking alone from {rock:.4g} m/s², "
-                f"p={a.p_ref:.4g} 1/s, {d}={a.delta_ref:.4g} rad")
+    ref = f"p={a.p_ref:.4g} 1/s, {d}={a.delta_ref:.4g} rad"
+    if a.slides:
+        ref = (f"its collapse mechanism slides; rocking alone from "
+               f"{a.info['ap_min_no_sliding']:.4g} m/s², {ref}")
     return (f"{a.name}: {_count(a.n_blocks, 'block')}, {_count(a.n_joints, 'joint')}{fr}, "
             f"ap,min={a.ap_min:.4g} m/s², {ref} (Moreau–Jean, docs/mdof.md)")
 

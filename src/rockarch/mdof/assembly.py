@@ -81,6 +81,12 @@ class Assembly:
         """True if no joint can slide (every mu is infinite)."""
         return bool(np.all(np.isinf(self.mu)))
 
+    @property
+    def slides(self) -> bool:
+        """True if friction lowers ap_min below rocking's (``info["ap_min_no_sliding"]``):
+        the collapse mechanism slides; p_ref and delta_ref stay rocking's."""
+        return bool(self.ap_min < self.info.get("ap_min_no_sliding", self.ap_min) * (1 - 1e-9))
+
     def body_of_polygon(self, i: int) -> int:
         return int(self.poly_body[i]) if self.poly_body else i
 

@@ -185,15 +185,14 @@ def as_motions(records, names=None, what: str = "records"
         records = [records]
     if isinstance(records, Suite):
         return tuple(records.motions), tuple(records.names if names is None else names)
-    bad = None
-    if isinstance(records, (str, bytes, os.PathLike)) or not hasattr(records, "__iter__"):
+    path = (str, bytes, os.PathLike)
+    if isinstance(records, path) or not hasattr(records, "__iter__"):
         bad = records
     else:
         records = tuple(records)
         bad = next((m for m in records if not isinstance(m, GroundMotion)), None)
     if bad is not None:
-        hint = (": read the files first, ra.read_suite(paths)"
-                if isinstance(bad, (str, bytes, os.PathLike)) else
+        hint = (": read the files first, ra.read_suite(paths)" if isinstance(bad, path) else
                 ": a Suite's records are in suite.motions" if isinstance(bad, SuiteRecord)
                 else "")
         raise TypeError(f"{what} must be a Suite (ra.read_suite) or a list of GroundMotion,"
