@@ -152,3 +152,18 @@ def test_messages_show_plain_numbers():
     with pytest.raises(ValueError) as info:
         ra.system("block", alpha=np.float64(-1.0))
     assert re.search(r"got -1\b", str(info.value)), info.value
+
+
+def test_responses_repr_is_one_line_verdict():
+    # a BlockResponse's repr printed every sample of theta and theta_dot (a screen of numbers
+    # in a notebook); every Response kind now prints its verdict in one line
+    import rockarch as ra
+
+    m = ra.pulse("sine", period=0.5, ap=3.0)
+    for s in (ra.system("block", alpha=0.2, p=2.0), ra.system("sdof", delta=0.2, ap_min=1.0)):
+        r = ra.simulate(s, m, ratio=3.0)
+        text = repr(r)
+        assert "\n" not in text and len(text) < 300
+        assert text.startswith(type(r).__name__ + "(")
+        assert ("overturned at t=" in text) == bool(r.overturned)
+        assert f"{r.impacts} impacts" in text

@@ -72,6 +72,14 @@ class Response:
     impacts: int
     t_end: float
 
+    def __repr__(self) -> str:
+        """One line: the kind, structure, motion and verdict (not the histories, which the
+        attributes hold). Subclasses are declared with ``repr=False`` to keep it."""
+        verdict = (f"overturned at t={self.t_overturn:.4g} s" if self.overturned
+                   else f"safe, max rotation ratio {self.max_rotation_ratio:.3g}")
+        return (f"{type(self).__name__}({self.system!r}, {self.motion_name!r}: {verdict}, "
+                f"{self.impacts} impacts, {np.size(self.t)} samples to t={self.t_end:.4g} s)")
+
     def to_dict(self) -> dict:
         """The verdict as plain numbers (the CLI's ``--json`` output).
 

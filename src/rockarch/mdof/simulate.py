@@ -74,7 +74,7 @@ def check_settings(t_free: float, h_factor: float, gap_tol: float) -> None:
     in_range("gap_tol (fraction of the joint thickness)", gap_tol, 1e-10, 1e-3)
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True, kw_only=True, repr=False)
 class MDOFResponse(Response):
     """Time history and summary of one MDOF simulation.
 

@@ -123,7 +123,7 @@ class RigidBlock:
         return -self.p**2 * (np.sin(x) - np.asarray(a_g) / self.g * np.cos(x))
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True, kw_only=True, repr=False)
 class BlockResponse(Response):
     """Time history of one block simulation (a :class:`~rockarch.core.response.Response`).
 

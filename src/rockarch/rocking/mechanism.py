@@ -255,7 +255,7 @@ def rocking_frame(alpha: float, p_column: float, mass_ratio: float, g: float = G
                                                "gamma": gamma, "p_column": p_column})
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True, kw_only=True, repr=False)
 class MechanismResponse(Response):
     """Time history of one SDOF mechanism simulation (a :class:`~rockarch.core.response.Response`).
 
