@@ -184,6 +184,15 @@ def test_bridge_geometry_and_statics():
     # the pier on the ground and the two springings on the abutments
     assert np.sum(two.body_a == -1) + np.sum(two.body_b == -1) == 3
     assert 0 < two.ap_min <= alone * (1 + LP_TOL)
+    # the abutments are outlines (drawn, and struck by a block that reaches them): each
+    # stands on the ground and holds its springing joint on a face of its own
+    assert len(two.info["supports"]) == 2 and not wide.info["supports"]
+    springings = [j for j in range(two.n_joints) if -1 in (two.body_a[j], two.body_b[j])
+                  and two.corners[j, :, 1].min() > 0]  # the pier's base is at y = 0
+    for k, sup in zip(springings, two.info["supports"], strict=True):
+        assert sup[:, 1].min() == pytest.approx(0.0, abs=1e-12)
+        for c in two.corners[k]:  # both corners of the springing joint are its vertices
+            assert np.min(np.hypot(*(sup - c).T)) < 1e-9
     with pytest.raises(ValueError, match=r"pier 1 block 1 falls"):
         bd.bridge(arch, 10, pier_height=3.0, pier_width=1.0)
     with pytest.raises(ValueError, match="--pier-width must exceed"):

@@ -427,6 +427,16 @@ def bridge(arch: Arch, n_voussoirs: int, *, spans: int = 1, pier_height: float,
             a = springers[k] if j == 0 else first + j - 1
             b = springers[k + 1] if j == n else first + j
             joints.append((a, b, ip[j] + sh, ep[j] + sh, v.tangent[j], None))
+    # the abutments as supports (drawn, and struck by a block that reaches them): from the
+    # springing joint down to the ground and a pier's width outwards
+    sup = []
+    if abut:
+        left, right = ip[0] + (offsets[0], dy), ep[-1] + (offsets[-1], dy)
+        top_l, top_r = ep[0] + (offsets[0], dy), ip[-1] + (offsets[-1], dy)
+        sup = [pg.convex_polygon([left, [left[0], 0.0], [top_l[0] - bp, 0.0],
+                                  [top_l[0] - bp, top_l[1]], top_l], "left abutment"),
+               pg.convex_polygon([top_r, [top_r[0], 0.0], [right[0] + bp, 0.0],
+                                  [right[0] + bp, right[1]], right], "right abutment")]
     what = (f"{spans}-span arch bridge" if spans > 1 else "arch") + \
         (" between abutments" if abut else " on piers")
     label = f"{arch.shape} l={arch.span:g} f={arch.rise:g}"
@@ -435,4 +445,4 @@ def bridge(arch: Arch, n_voussoirs: int, *, spans: int = 1, pier_height: float,
                     joints=joints, poly_body=pb, mu=mu, g=g, names=names,
                     info={"spans": spans, "blocks": n, "pier_height": hp,
                           "pier_width": bp, "pier_blocks": nc, "shape": arch.shape,
-                          "abutments": int(abut)})
+                          "abutments": int(abut), "supports": tuple(sup)})
