@@ -43,10 +43,16 @@ def test_contract_single_block_with_friction(tmp_path):
     # PGA 0.4 g < B/H = 0.5 g: it cannot rock (sliding caps the force at 0.2 g), it slides
     assert out["overturned"] is False and out["sliding_contacts_max"] == 1
     assert out["max_slip"] > 0.01
-    # without --friction: the rocking ap_min, B/H·g
+    # the header's numbers in --json: rocking alone from B/H·g, and the block's Housner p
+    # and alpha (closed forms: p² = 3g/(4R), R the half-diagonal; alpha = atan(B/H))
+    rocking = {"ap_min_rocking": 0.5 * G, "p": np.sqrt(3 * G / (4 * np.hypot(0.25, 0.5))),
+               "delta": np.arctan(0.5), "blocks": 1, "joints": 1}
+    assert {k: out[k] for k in rocking} == pytest.approx(rocking, rel=1e-9)
+    # without --friction: the rocking ap_min, B/H·g, and no sliding mechanism to name
     out = _json(["simulate", "mdof", "--column", "0.5,1.0", "--record", str(rec), "--units",
                  "g", "--ratio", "0.5", "--json"])
     assert out["ap_min"] == pytest.approx(0.5 * G, rel=1e-12)
+    assert "ap_min_rocking" not in out and out["p"] == pytest.approx(rocking["p"], rel=1e-9)
 
 
 def test_no_friction_is_todays_assembly():

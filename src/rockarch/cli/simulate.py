@@ -237,6 +237,18 @@ def _mdof_header(a) -> str:
             f"ap,min={a.ap_min:.4g} m/s², {ref} (Moreau–Jean, docs/mdof.md)")
 
 
+def _mdof_parameters(a) -> dict:
+    """The structure's numbers that :func:`_mdof_header` prints, for ``--json`` (SI units):
+    ap_min, the reference mechanism's p and delta (delta_u for an arch), and rocking's
+    ap_min where the collapse mechanism slides."""
+    d = "delta_u" if "hinges" in a.info else "delta"
+    out = {"ap_min": a.ap_min, "p": a.p_ref, d: a.delta_ref, "blocks": a.n_blocks,
+           "joints": a.n_joints}
+    if a.slides:
+        out["ap_min_rocking"] = a.info["ap_min_no_sliding"]
+    return out
+
+
 def _with_ramp(a, header: str, extra: dict) -> tuple[str, dict]:
     """The header and JSON fields of --ramp (:func:`rockarch.mdof.ramp.ramp_onset`)."""
     from rockarch.mdof.ramp import ramp_onset
@@ -288,7 +300,7 @@ def simulate_mdof(
     if mechanism is not None:
         from rockarch.output.collapse_plots import plot_collapse
         plot_collapse(sysobj.assembly, mechanism)
-    header, extra = _mdof_header(sysobj.assembly), {"ap_min": sysobj.ap_min}
+    header, extra = _mdof_header(sysobj.assembly), _mdof_parameters(sysobj.assembly)
     if ramp:
         header, extra = _with_ramp(sysobj.assembly, header, extra)
     _run(sysobj, header, {**opts, "plot": plot, "json_out": json_out}, extra=extra,
