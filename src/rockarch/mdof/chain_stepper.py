@@ -47,6 +47,7 @@ from rockarch.mdof.kinematics import (
     advance,
     at_rest,
     cap_projection_energy,
+    creep_energy,
     energy,
     impact_ahead,
     kinetic,
@@ -331,6 +332,7 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
     impacts, open_max, n_rec = np.int64(0), np.int64(0), np.int64(0)
     t, step, i_prev = 0.0, np.int64(0), 0.0
     n_steps = int(math.ceil(t_end / h))
+    no_free = np.zeros(0, dtype=np.bool_)  # a chain's joints never slide
     # a step in which a corner is about to strike runs as REFINE substeps (Eq. 6.5)
     gprev = np.zeros((nj, 2))
     ahead = np.bool_(False)
@@ -375,7 +377,8 @@ def run(model, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_
             _project(nbod, nj, x, y, ph, rl, rr, n0, im, ii, eps, keep, gap, jl, jr, wb, kb,
                      lb, rhs, mu, 100.0 * gtol)
             if not struck:  # a strike's projection undoes a passage through (Eq. 6.3a)
-                cap_projection_energy(mass, ii, vx, vy, om, y, v0, g)
+                cap_projection_energy(mass, ii, vx, vy, om, y, v0, g,
+                                      creep_energy(lam, keep, eps, eps, no_free))
         sub, t, step = step_end(sub, nsub, t_step, h, step)
         # joints, impacts
         impacts, open_max, mx, n_open, rho = tally(gmid, gtol, was_open, lam, ph, delta_ref,

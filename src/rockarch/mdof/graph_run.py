@@ -291,7 +291,8 @@ def run(m, scale, tk, ak, amp, h, t_end, t_motion, gtol_rel, rec_every, out_t, o
                 v0 += mass[j] * y[j]
             project(m, x, y, ph, eps, keep, 100.0 * gtol, free_t, anchor, tws, ws)
             if not struck:  # a strike's projection undoes a passage through (Eq. 6.3a)
-                kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g)
+                kin.cap_projection_energy(mass, ws.ii, vx, vy, om, y, v0, g,
+                                          kin.creep_energy(ws.lam, keep, eps_n, eps, free_t))
         sub, t, step = kin.step_end(sub, nsub, t_step, h, step)
         impacts, open_max, mx, n_open, rho = kin.tally(gmid, gtol, was_open, ws.lam, ph,
                                                    m.delta_ref, impacts, open_max, mx)

@@ -113,12 +113,15 @@ def cumint_knots(tk, ak):
 
 
 @nb.njit(cache=True)
-def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g):
+def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g, creep):
     """After a position projection: a gain of potential energy (O(h²) drift, not physics,
     ``v0`` = Σ m·y before it) is taken from the kinetic energy, so the projection never
     adds energy (docs/mdof.md, step 6); not called in a step where a corner struck (Eq.
-    (6.3a)). ``ii`` holds inverse moments of inertia."""
-    dv = -g * v0
+    (6.3a)). ``ii`` holds inverse moments of inertia. ``creep``
+    (:func:`creep_energy`): what the step's regularised contacts took by creeping, which
+    the projection gives back, is not charged (a heavy block resting on the ground would
+    otherwise stop a light one sliding or rocking on it)."""
+    dv = -g * v0 - creep
     ke = 0.0
     for j in range(mass.shape[0]):
         dv += g * mass[j] * y[j]
@@ -129,6 +132,23 @@ def cap_projection_energy(mass, ii, vx, vy, om, y, v0, g):
             vx[j] *= f
             vy[j] *= f
             om[j] *= f
+
+
+@nb.njit(cache=True)
+def creep_energy(lam, keep, eps_n, eps_t, free_t):
+    """Σ ε·Λ² over the kept rows (3 per joint: two corners with ε_n, the tangential row with
+    ε_t unless its joint is in ``free_t``, sliding or open; an empty ``free_t``: none is):
+    the energy the regularised law's creep u = −ε·Λ took in the step, which the position
+    projection returns (:func:`cap_projection_energy`)."""
+    e = 0.0
+    for r in range(keep.shape[0]):
+        if not keep[r]:
+            continue
+        if r % 3 < 2:
+            e += eps_n * lam[r] ** 2
+        elif free_t.shape[0] == 0 or not free_t[r // 3]:
+            e += eps_t * lam[r] ** 2
+    return e
 
 
 @nb.njit(cache=True)
