@@ -22,6 +22,15 @@ from rockarch.rocking import mechanism as mc
 LP_TOL = 1e-7
 
 
+def test_a_wall_without_friction_has_no_sliding_joint():
+    # its wedge turns about one corner (a rigid rotation of every block about (2.0, 0.2)): the
+    # crack's bed and head joints open at both corners, and the head joint beside the pivot
+    # moves along its face carrying nothing; none slides (they were all called sliding, and
+    # drawn so in --mechanism, on a wall whose joints cannot slide)
+    c = statics.collapse(mdof.wall(6, 5, 0.4, 0.2))
+    assert c.opening.any() and not c.sliding.any()
+
+
 def _rect(x0, y0, w, h):
     return [[x0, y0], [x0 + w, y0], [x0 + w, y0 + h], [x0, y0 + h]]
 

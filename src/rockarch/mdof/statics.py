@@ -65,7 +65,10 @@ class Collapse:
     opening : (nj, 2) bool array
         Joint corners that open in the mechanism.
     sliding : (nj,) bool array
-        Joints that slide in the mechanism.
+        Joints that slide in the mechanism: their faces move along each other while the
+        joint carries a normal force (a joint open at both corners, or carrying nothing, does
+        not slide; with ``friction="associative"`` a sliding joint dilates, opens at both
+        corners and is shown by ``opening``).
     normal_force, tangential_force : (nj, 2) arrays
         Corner forces at collapse, in units of g·(mass unit).
     p, delta : float
@@ -342,8 +345,16 @@ def _collapse(state, geom, g: float, converged: bool, iterations: int) -> Collap
         if math.isfinite(d) and d != delta:  # Eq. (3.4) on the leading part's rotation
             p, delta = p * math.sqrt(math.sin(delta) * rate / d), d
     x = state.x
+    normal = x[:2 * nj].reshape(nj, 2)
+    # sliding (the attribute): a joint that moves along its face while it carries a normal
+    # force (friction at its capacity). A joint that opens at both corners separates, and
+    # one that carries nothing is free: neither slides, though its faces move along each
+    # other (a head joint beside a rotating wedge); `slide` above, any tangential motion,
+    # decides only whether the mechanism is a linkage of hinges (the finite δ)
+    carries = normal.sum(axis=1) > 1e-9 * max(float(normal.max()), 1e-300)
+    slide = slide & ~opening.all(axis=1) & carries
     return Collapse(ap_min=lam * g, lambda_=lam, direction=direction, velocity=vel,
-                    opening=opening, sliding=slide, normal_force=x[:2 * nj].reshape(nj, 2),
+                    opening=opening, sliding=slide, normal_force=normal,
                     tangential_force=x[2 * nj:4 * nj].reshape(nj, 2), p=p, delta=delta,
                     converged=converged, iterations=iterations)
 
