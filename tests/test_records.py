@@ -519,3 +519,139 @@ def test_a_folder_of_every_format_is_one_suite(tmp_path):
     for r in suite.records:
         assert np.abs(r.motion.a - cut).max() <= 6e-6, r.name
         np.testing.assert_allclose(r.motion.t, ref.t[:500], rtol=1e-9, atol=1e-12)
+
+
+# --------------------------------------------------------------- single-column text, given dt
+
+
+def _rows(values, per_line: int, head: str = "") -> str:
+    """``values`` written ``per_line`` a line in fixed-width fields of 17 significant
+    digits (the last line shorter where they do not fill it), after ``head``."""
+    return head + "".join(" ".join(f"{v:25.16E}" for v in values[i:i + per_line]) + "\n"
+                          for i in range(0, len(values), per_line))
+
+
+@pytest.mark.parametrize("per_line", [1, 8])
+def test_single_column_round_trip(tmp_path, per_line):
+    """El Centro's accelerations in g, one a line or 8 a line (5372 = 671·8 + 4: a short last
+    row, as fixed-width legacy files end), read back with dt and units="g": the same times,
+    bit for bit (k·dt, as the .AT2 reader builds them), and the same samples within 1e-12.
+    The file holds a/g to 17 significant digits, which parse back to the same double; what
+    is left is a/g·g (two roundings, ~2e-16 relative) and make test-perturbed's last bit
+    (1e-16): 1e-12 bounds that with room and still fails on any real loss (a 7-digit file
+    is 5e-8 off)."""
+    ref = el_centro()
+    path = tmp_path / "elcentro_g.txt"
+    path.write_text(_rows(ref.a / G_STANDARD, per_line,
+                          head="El Centro 1940, 180 deg\nunits: g, dt = 0.01 s\n"))
+    got = read_record(path, dt=0.01, units="g")
+    np.testing.assert_array_equal(got.t, ref.t)
+    np.testing.assert_allclose(got.a, ref.a, rtol=1e-12, atol=0.0)
+    assert got.meta == {"source": str(path), "dt": 0.01, "npts": 5372,
+                        "format": "single-column", "units_in_file": "g"}
+    # the same keys as a two-column file's meta, whose reader it stands beside
+    two = tmp_path / "two.txt"
+    np.savetxt(two, np.c_[ref.t[:10], ref.a[:10]])
+    assert set(read_record(two, units="m/s2").meta) == set(got.meta)
+
+
+def test_single_column_header_comments_separators_and_units(tmp_path):
+    text = ("station X\n# a comment\n0.1, 0.2; 0.3\t-0.4   # after the values\n\n"
+            "# between rows\n-0.5 0.6 0.7 0.8\n0.9\n")
+    path = tmp_path / "rows.dat"
+    path.write_text(text)
+    got = read_record(path, dt=0.005, units="cm/s2")
+    assert got.a == pytest.approx(0.01 * np.array([0.1, 0.2, 0.3, -0.4, -0.5, 0.6, 0.7, 0.8,
+                                                   0.9]), rel=1e-15)
+    assert got.t[-1] == pytest.approx(8 * 0.005, rel=1e-15)
+    # without units: m/s², with the two-column reader's warning (a peak of 0.9 is a
+    # plausible PGA in g too)
+    with pytest.warns(UnitsWarning, match="plausible PGA in g"):
+        assert read_record(path, dt=0.005).pga == pytest.approx(0.9)
+
+
+@pytest.mark.parametrize(
+    "text, kwargs, err, msg",
+    [
+        # no dt: the two-column reader's error says how to give it
+        ("0.01\n-0.02\n0.03\n", {}, ValueError,
+         r"line 1 has 1 column.*no time step: give it \(--dt .*dt= in Python\)"),
+        (_rows(np.arange(1, 17) / 100, 8), {}, ValueError,
+         r"line 1 has 8 column.*give their time step \(--dt, dt= in Python\)"),
+        # dt itself
+        ("0.01\n-0.02\n", {"dt": 0}, ValueError, r"finite time step > 0 in seconds, got 0$"),
+        ("0.01\n-0.02\n", {"dt": -0.01}, ValueError, r"> 0 in seconds, got -0.01$"),
+        ("0.01\n-0.02\n", {"dt": float("nan")}, ValueError, r"> 0 in seconds, got nan$"),
+        ("0.01\n-0.02\n", {"dt": float("inf")}, ValueError, r"> 0 in seconds, got inf$"),
+        ("0.01\n-0.02\n", {"dt": 10}, ValueError, r"dt is in seconds \(10 ms is dt = 0.01"),
+        ("0.01\n-0.02\n", {"dt": 1e-7}, ValueError, r"dt is in seconds"),
+        ("0.01\n-0.02\n", {"dt": "0.01"}, TypeError, r"dt must be a number, got str"),
+        # files that give their own step
+        ("0 0.1\n0.01 0.2\n0.02 -0.3\n0.03 0.1\n", {"dt": 0.01}, ValueError,
+         r"two numbers, the first increasing \(0, 0.01, 0.02, \.\.\.\): a two-column file "
+         r"\(time, acceleration\), which has its own time column: read it without dt"),
+        ("0 0.1\n0.01 0.2\n0.03 -0.3\n", {"dt": 0.01}, ValueError,  # non-uniform too
+         r"a two-column file"),
+        ("0 0.1 5\n0.01 0.2 6\n0.02 -0.3 7\n", {"dt": 0.01}, ValueError,
+         r"a time column\? .*\(3 a line here\)"),
+        # the samples
+        ("0.01\n-0.02\n0.03\nabc\n0.04\n", {"dt": 0.01}, ValueError,
+         r"line 4 is not numbers: 'abc'"),
+        ("acc [g]\n0.01 0.02\n0.03 end\n", {"dt": 0.01}, ValueError,
+         r"line 3 is not numbers: '0.03 end'"),
+        ("0.01\n-0.02\nnan\n", {"dt": 0.01}, ValueError,
+         r"line 3 holds a value that is not a finite number \(sample 2\)"),
+        ("5372 0.01\n0.1\n0.2\n0.3\n", {"dt": 0.01}, ValueError,
+         r"line 2 holds 1 value.*first sample line \(line 1\) 2.*NPTS, DT"),
+        ("0.1 0.2 0.3\n0.4 0.5\n0.6 0.7 0.8\n", {"dt": 0.01}, ValueError,
+         r"line 2 holds 2 value.*\(the last may hold fewer\)"),
+        ("0,01\n-0,02\n0,03\n", {"dt": 0.01}, ValueError, r"decimal commas\?"),
+        ("time\nacc\n", {"dt": 0.01}, ValueError, r"no samples"),
+        ("0.5\n", {"dt": 0.01}, ValueError, r"at least 2 samples, found 1"),
+        ("0 0\n0 0\n", {"dt": 0.01}, ValueError, r"every sample is zero"),
+        ("1e6\n-2e6\n", {"dt": 0.01, "units": "g"}, ValueError, r"not a plausible ground"),
+    ],
+    ids=["no-dt", "no-dt-rows", "dt=0", "dt<0", "dt=nan", "dt=inf", "dt=10", "dt=1e-7",
+         "dt-str", "two-column", "two-column-non-uniform", "time-column", "text-line",
+         "text-in-a-row", "nan", "npts-dt-header", "ragged", "decimal-comma", "header-only",
+         "one", "zeros", "huge"],
+)
+def test_single_column_errors(tmp_path, text, kwargs, err, msg):
+    with pytest.raises(err, match=msg):
+        read_record(_write(tmp_path, "acc.txt", text), **kwargs)
+
+
+def test_single_column_coarse_dt_warns(tmp_path):
+    """A dt above 0.1 s (records are sampled every 0.001-0.05 s) is read, with a warning
+    that dt is in seconds."""
+    from rockarch.motion.records import TimeStepWarning
+
+    with pytest.warns(TimeStepWarning, match="dt = 0.5 s .*dt is in seconds"):
+        m = read_record(_write(tmp_path, "acc.txt", "0.01\n-0.02\n"), dt=0.5, units="g")
+    assert m.t[-1] == 0.5
+
+
+def test_dt_is_refused_for_a_file_that_gives_its_own_step(tmp_path):
+    """Every format whose header gives the time step refuses dt, recognised by its
+    contents as without dt (a PEER file under another name too)."""
+    cm = el_centro().a[:200] * 100.0
+    files = {"x.AT2": NEW, "peer.txt": NEW, "e.ASC": _esm_text(cm),
+             "k.EW": _knet_text(cm, duration=2), "c.V2c": _cosmos_text(cm, approx=2)}
+    for name, text in files.items():
+        path = _write(tmp_path, name, text)
+        read_record(path)  # a valid file
+        with pytest.raises(ValueError, match=r"gives its own time step \(in its header\); "
+                                             r"dt \(--dt\) .* does not apply"):
+            read_record(path, dt=0.01)
+    with pytest.raises(ValueError, match="COSMOS file gives its own time step"):
+        read_record(f"{_write(tmp_path, 'c2.V2c', _cosmos_text(cm, approx=2, channels=2))}#2",
+                    dt=0.01)
+
+
+def test_single_column_samples_are_counted_before_they_are_parsed(tmp_path, monkeypatch):
+    monkeypatch.setenv("ROCKARCH_MAX_SAMPLES", "300")
+    path = _write(tmp_path, "long.txt", _rows(np.sin(np.arange(304.0)), 8))
+    with pytest.raises(ValueError, match=r"needs 304 samples.*ROCKARCH_MAX_SAMPLES"):
+        read_record(path, dt=0.01)
+    assert read_record(_write(tmp_path, "short.txt", _rows(np.sin(np.arange(296.0)), 8)),
+                       dt=0.01, units="g").t.size == 296

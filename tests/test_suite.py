@@ -1,5 +1,5 @@
-"""Record suites: folders of .AT2 / two-column records with and without the NGA-West2
-_SearchResults.csv; ``rockarch records info``."""
+"""Record suites: folders of .AT2 / two-column / single-column records with and without the
+NGA-West2 _SearchResults.csv; ``rockarch records info``."""
 
 import json
 import shutil
@@ -120,6 +120,39 @@ def test_two_column_records_in_a_folder_and_a_file_list(tmp_path):
     assert "not plausible" in tiny.notes[0]
     # site-oas reads folders through the same expansion
     assert [p.name for p in site.record_paths([tmp_path])] == ["a.txt", "b.dat", "c.txt"]
+
+
+def test_single_column_records_in_a_folder_share_one_dt(tmp_path):
+    """A folder of files of accelerations alone (one a line, or 5 a line) read with dt: every
+    file at that step; a file that gives its own step (.AT2, two-column) refuses it, the
+    file named; a bad dt is refused before any file is read, a coarse one warns once."""
+    from rockarch.motion.records import TimeStepWarning
+
+    t = np.arange(400) * 0.02
+    a = 0.1 * np.sin(2 * np.pi * t) * np.exp(-0.1 * t)
+    np.savetxt(tmp_path / "a.txt", a)
+    np.savetxt(tmp_path / "b.acc", 2 * a[:395].reshape(-1, 5))
+    s = suite.read_suite(tmp_path, units="g", dt=0.02)
+    assert s.names == ["a.txt", "b.acc"] and not s.notes
+    assert [r.motion.meta["format"] for r in s] == ["single-column"] * 2
+    assert [r.dt for r in s] == pytest.approx([0.02, 0.02], rel=1e-12)
+    assert s[1].motion.t.size == 395
+    assert s[1].motion.pga == pytest.approx(2 * G_STANDARD * np.abs(a[:395]).max(), rel=1e-12)
+    # without units: one note for both (peaks plausible in g), as for two-column files
+    notes = suite.read_suite(tmp_path, dt=0.02).notes
+    assert len(notes) == 1 and notes[0].startswith("2 single-column record(s) read as m/s²")
+    with pytest.warns(TimeStepWarning) as caught:
+        suite.read_suite(tmp_path, units="g", dt=0.2)
+    assert len(caught) == 1
+    with pytest.raises(ValueError, match=r"finite time step > 0 in seconds, got nan"):
+        suite.read_suite(tmp_path / "nope", dt=float("nan"))
+    shutil.copy(bundled_record_path(180), tmp_path)
+    with pytest.raises(ValueError, match=r"ELC180-hor1.AT2: a PEER .AT2 file gives its own "
+                                         r"time step"):
+        suite.read_suite(tmp_path, units="g", dt=0.02)
+    np.savetxt(tmp_path / "c.txt", np.c_[t, a])
+    with pytest.raises(ValueError, match=r"c.txt: every line holds two numbers.*two-column"):
+        suite.read_suite([tmp_path / "a.txt", tmp_path / "c.txt"], units="g", dt=0.02)
 
 
 def test_bad_sources_give_one_clear_error(tmp_path):

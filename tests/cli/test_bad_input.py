@@ -98,6 +98,8 @@ def files(tmp_path_factory):
     (d / "folder").mkdir()
     (d / "plain.txt").write_text("not a netcdf file\n")
     (d / "good.txt").write_text("0 0.1\n0.01 0.2\n0.02 -0.3\n0.03 0.0\n")
+    (d / "single.txt").write_text("0.1 0.2\n-0.3 0.0\n0.25\n")  # accelerations alone
+    (d / "single_text.txt").write_text("0.1\n0.2\nend of part 1\n-0.3\n")
     motions, hashes = site.load_records([REC])
     ds = site.site_oas(motions, np.array([2.0, 4.0]), np.array([1.0, 3.0]), hashes=hashes,
                        tol=0.0, progress=False)
@@ -184,6 +186,18 @@ def _cases():
     add("block-units=furlong", _sub(block, signal=None, period=None,
                                     record="{files}/good.txt", units="furlong"))
     add("block-units-with-AT2", _sub(block, signal=None, period=None, record=REC, units="cm/s2"))
+    # --dt: the time step of a single-column record (accelerations alone)
+    single = _sub(block, signal=None, period=None, record="{files}/single.txt", units="g")
+    for v in ("0", "-0.01", "nan", "inf", "abc", "10", "1e-9"):
+        add(f"block-dt={v}", _sub(single, dt=v))
+    add("block-single-column-no-dt", single)
+    add("block-single-column-text-line", _sub(single, record="{files}/single_text.txt",
+                                              dt="0.01"))
+    add("block-dt-with-AT2", _sub(single, record=REC, units=None, dt="0.01"))
+    add("block-dt-with-two-column", _sub(single, record="{files}/good.txt", dt="0.01"))
+    add("block-dt-with-signal", _sub(block, dt="0.01"))
+    add("oas-dt=nan", _sub(OAS, signal=None, period=None, record="{files}/single.txt",
+                           dt="nan"))
     add("block-plot-missing-dir", _sub(block, plot="{tmp}/no/th.png"))
     add("block-plot-is-folder", _sub(block, plot="{files}/folder"))
     for v in ("0", "-0.1", "nan"):
@@ -296,6 +310,9 @@ def _cases():
     add("site-out-missing-dir", _sub(SITE, out="{tmp}/no/s.nc"))
     add("site-out-is-folder", _sub(SITE, out="{files}/folder"))
     add("site-units=furlong", _sub(SITE, records="{files}/good.txt", units="furlong"))
+    add("site-dt=0", _sub(SITE, records="{files}/single.txt", dt="0"))
+    add("site-dt-with-AT2", _sub(SITE, dt="0.01"))
+    add("design-dt-with-site", _sub(DESIGN, dt="0.01"))
     add("site-no-out", _sub(SITE, out=None))
     add("design-site-missing", _sub(DESIGN, site="{tmp}/none.nc"))
     add("design-site-not-netcdf", _sub(DESIGN, site="{files}/plain.txt"))
@@ -346,6 +363,9 @@ def _cases():
     add("records-info-damping=-0.1", info + ["--damping", "-0.1"])
     add("records-info-plot-missing-dir", info + ["--plot", "{tmp}/no/s.png"])
     add("records-info-no-source", ["records", "info"])
+    add("records-info-dt=-1", ["records", "info", "{files}/single.txt", "--dt", "-1"])
+    add("records-info-dt-with-AT2", info + ["--dt", "0.01"])
+    add("fragility-dt=nan", _sub(frag, records="{files}/single.txt", dt="nan"))
     synth = ["records", "synth", "{tmp}/synth"]
     for opt, v in (("n", "0"), ("n", "-3"), ("dt", "0"), ("dt", "nan"), ("f-corner", "-1"),
                    ("pulse-fraction", "1.5")):

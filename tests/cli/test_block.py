@@ -75,6 +75,31 @@ def test_record_scaling_in_cli_matches_api():
     assert (out["p"], out["alpha"], out["ap_min"]) == (3.0, 0.1, b.ap_min)
 
 
+def test_single_column_record_with_dt_is_the_record(tmp_path):
+    """El Centro's accelerations in g, 5 a line, through --record FILE --dt 0.01 --units g:
+    the response of the .AT2 file (the samples agree within a few units of the last digit,
+    tests/test_records.py; the rotation within 1e-6 leaves room for the chaotic rocking to
+    amplify them); a bad --dt is one line, exit 2."""
+    g = el_centro().a / 9.80665
+    rec = tmp_path / "elcentro_g.txt"
+    rec.write_text("".join(" ".join(f"{v:.17g}" for v in g[k:k + 5]) + "\n"
+                           for k in range(0, g.size, 5)))
+    args = ["simulate", "block", "--alpha", "0.15", "--p", "2", "--ratio", "1.3", "--json"]
+    got = _json([*args, "--record", str(rec), "--dt", "0.01", "--units", "g"])
+    ref = _json([*args, "--record", REC])
+    assert got["max_rotation_ratio"] == pytest.approx(ref["max_rotation_ratio"], rel=1e-6)
+    assert (got["overturned"], got["ap_min"]) == (ref["overturned"], ref["ap_min"])
+    for dt, msg in (("0", "dt (--dt) must be a finite time step > 0 in seconds, got 0"),
+                    ("nan", "got nan"), ("10", "dt is in seconds"),
+                    ("x", "Invalid value for '--dt'")):
+        res = runner.invoke(app, [*args, "--record", str(rec), "--dt", dt, "--units", "g"])
+        assert res.exit_code == 2 and res.stdout == "", (dt, res.output)
+        assert res.stderr.count("\n") == 1 and res.stderr.startswith("error: "), res.stderr
+        assert msg in res.stderr and "Traceback" not in res.stderr
+    res = runner.invoke(app, [*args, "--record", str(rec), "--units", "g"])
+    assert res.exit_code == 2 and "give their time step (--dt, dt= in Python)" in res.stderr
+
+
 @pytest.mark.parametrize(
     "args, msg",
     [

@@ -131,8 +131,9 @@ def float_list(name: str, text: str) -> np.ndarray:
 
 
 def motion_shape(signal, period: float | None, cycles: int | None, record: Path | None,
-                 units: str | None) -> GroundMotion:
-    """The ground-motion shape of --signal/--period or --record (peak 1 for pulses)."""
+                 units: str | None, dt: float | None = None) -> GroundMotion:
+    """The ground-motion shape of --signal/--period or --record (peak 1 for pulses; --dt:
+    the time step of a single-column record)."""
     if record is not None and signal is not None:
         raise ValueError("give either --record or --signal/--period, not both")
     if record is not None and (period is not None or cycles is not None):
@@ -140,13 +141,16 @@ def motion_shape(signal, period: float | None, cycles: int | None, record: Path 
                          "--signal, not --record (a record has its own time axis)")
     if record is None and units is not None:
         raise ValueError("--units goes with --record (the units of a two-column file)")
+    if record is None and dt is not None:
+        raise ValueError("--dt goes with --record (the time step of a single-column file, "
+                         "accelerations alone)")
     if record is not None:
         if record.suffix.lower() == ".at2":
             if units not in (None, "g"):
                 raise ValueError(f"{record}: a PEER .AT2 file is in units of g; --units "
                                  f"{units} contradicts it (leave --units out)")
             units = None  # --units g agrees with the file's own statement
-        return read_record(record, units=units)
+        return read_record(record, units=units, dt=dt)
     if signal is None:
         raise ValueError("give a ground motion: --signal S --period T, or --record PATH")
     if period is None:
@@ -213,10 +217,12 @@ def _progress_line(msg: str) -> None:
     echo_err(f"progress: {msg}")
 
 
-def check_suite_units(sources, units: str | None) -> None:
+def check_suite_units(sources, units: str | None, dt: float | None = None) -> None:
     """--units sets the units of two-column files; where every record of ``sources`` states
-    its own (.AT2 in g, ESM, K-NET, COSMOS) another unit is refused, as with --record."""
-    if units is None:
+    its own (.AT2 in g, ESM, K-NET, COSMOS) another unit is refused, as with --record.
+    With --dt every record must be a single-column file, whose units --units sets (the
+    reader refuses --dt for the others)."""
+    if units is None or dt is not None:
         return
     from rockarch.motion.suite import TWO_COLUMN_SUFFIXES, record_files
 
@@ -228,11 +234,12 @@ def check_suite_units(sources, units: str | None) -> None:
                              "(leave it out)")
 
 
-def read_records(sources, units: str | None) -> Suite:
+def read_records(sources, units: str | None, dt: float | None = None) -> Suite:
     """The suite of --records, its notes (records left out, implausible PGAs: wrong units?)
-    printed as warnings on stderr (--units as :func:`check_suite_units`)."""
-    check_suite_units(sources, units)
-    suite = read_suite(sources, units=units)
+    printed as warnings on stderr (--units as :func:`check_suite_units`; --dt: the time
+    step of single-column files)."""
+    check_suite_units(sources, units, dt)
+    suite = read_suite(sources, units=units, dt=dt)
     check_distinct(suite)
     for note in suite.notes:
         echo_err(f"warning: {note}")
@@ -245,10 +252,15 @@ SIGNAL_OPT = typer.Option(None, help="Pulse shape (paper Fig. 14).")
 PERIOD_OPT = typer.Option(None, help="Pulse period T [s].")
 CYCLES_OPT = typer.Option(None, help="Number of cycles of --signal harmonic (default 3).")
 RECORD_OPT = typer.Option(None, help="Record file (.AT2, ESM .ASC, K-NET .NS/.EW, "
-                          "COSMOS .V2c (FILE#N: channel N of a file of several) or "
-                          "two-column time/acc).")
-UNITS_OPT = typer.Option(None, help="Units of a two-column record: m/s2 (default), g, cm/s2 "
-                         "(= gal), mm/s2; also written m/s/s, m/s^2, cm/sec2, ...")
+                          "COSMOS .V2c (FILE#N: channel N of a file of several), "
+                          "two-column time/acc, or accelerations alone with --dt).")
+UNITS_OPT = typer.Option(None, help="Units of a two-column or single-column record: m/s2 "
+                         "(default), g, cm/s2 (= gal), mm/s2; also written m/s/s, m/s^2, "
+                         "cm/sec2, ...")
+#: --dt wherever --units is: the time step of single-column record files.
+DT_HELP = ("Time step [s] of single-column record files (accelerations only, one or more per "
+           "line).")
+DT_OPT = typer.Option(None, "--dt", help=DT_HELP)
 RATIO_OPT = typer.Option(..., help="ap/ap,min: pulse peak or record PGA over ap,min.")
 REST_OPT = typer.Option(None, help="Coefficient of restitution in [0, 1] (default: the "
                         "structure's own impact law).")

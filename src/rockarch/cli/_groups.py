@@ -15,6 +15,7 @@ import typer
 from rockarch.cli._common import (
     CYCLES_OPT,
     DASK_WORKERS_OPT,
+    DT_OPT,
     G_OPT,
     JSON_OPT,
     MDOF_BLOCKS_OPT,
@@ -111,10 +112,12 @@ SYSTEM: Group = (
     ("restitution", float, REST_OPT), ("t_free", float, TFREE_OPT), ("g", float, G_OPT),
 ) + STEP
 
-#: The ground motion: a pulse (--signal/--period/--cycles) or a record (--record/--units).
+#: The ground motion: a pulse (--signal/--period/--cycles) or a record (--record/--units,
+#: --dt for a single-column file).
 MOTION: Group = (
     ("signal", Signal, SIGNAL_OPT), ("period", float, PERIOD_OPT),
     ("cycles", int, CYCLES_OPT), ("record", Path, RECORD_OPT), ("units", str, UNITS_OPT),
+    ("dt", float, DT_OPT),
 )
 
 #: The peak of the motion over the structure's ap,min.

@@ -61,11 +61,13 @@ IDA: Group = (
                               "[1/s] (default for mdof walls, columns, colonnades and "
                               "assembly files: their own, at the size given).")),
     ("records", list[Path], typer.Option(None, "--records", help="Folders of records "
-                                         "(.AT2, .ASC, K-NET, .V2c, two-column) or record "
-                                         "files; several may follow one --records.")),
+                                         "(.AT2, .ASC, K-NET, .V2c, two-column, or "
+                                         "single-column with --dt) or record files; several "
+                                         "may follow one --records.")),
     ("more", list[Path], typer.Argument(None, hidden=True)),
-    ("units", str, typer.Option(None, help="Units of two-column records: m/s2 (default), g, "
-                                  "cm/s2 (= gal), mm/s2.")),
+    ("units", str, typer.Option(None, help="Units of two-column or single-column records: "
+                                  "m/s2 (default), g, cm/s2 (= gal), mm/s2.")),
+    ("dt", float, cc.DT_OPT),
     ("ratio_max", float, typer.Option(None, help="Scan limit ap/ap,min (default 5, as "
                                       "`rockarch oas`); records safe up to it are "
                                       "censored.")),
@@ -112,7 +114,8 @@ def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
     check_island_step(opts["island_step"])
     if opts["search_step"] is not None:
         check_search_step(opts["search_step"])
-    suite = read_records(list(opts["records"]) + list(opts["more"] or []), opts["units"])
+    suite = read_records(list(opts["records"]) + list(opts["more"] or []), opts["units"],
+                         opts["dt"])
     motions = suite.motions
     with open_sweep(**ida_sweep_options(opts, len(motions)), n_sims=ratios.size * len(motions),
                     echo=echo_err) as (executor, chunk_store):

@@ -8,7 +8,14 @@ from pathlib import Path
 import typer
 
 from rockarch.cli._app import app
-from rockarch.cli._common import JSON_OPT, check_suite_units, float_list, guarded, print_json
+from rockarch.cli._common import (
+    DT_OPT,
+    JSON_OPT,
+    check_suite_units,
+    float_list,
+    guarded,
+    print_json,
+)
 from rockarch.core.constants import G_STANDARD
 from rockarch.motion import intensity, synthetic
 from rockarch.motion.suite import describe, read_suite
@@ -19,11 +26,12 @@ records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                           help="Record suites: metadata and intensity measures.")
 app.add_typer(records_app, name="records")
 
-SOURCES_ARG = typer.Argument(..., help="Record files (.AT2, .ASC, K-NET, .V2c or "
-                             "two-column) and/or folders of them (with an optional NGA-West2 "
-                             "_SearchResults.csv).")
-UNITS_OPT = typer.Option(None, help="Units of two-column records: m/s2 (default), g, cm/s2 "
-                         "(= gal), mm/s2; also written m/s/s, m/s^2, cm/sec2, ...")
+SOURCES_ARG = typer.Argument(..., help="Record files (.AT2, .ASC, K-NET, .V2c, "
+                             "two-column, or single-column with --dt) and/or folders of them "
+                             "(with an optional NGA-West2 _SearchResults.csv).")
+UNITS_OPT = typer.Option(None, help="Units of two-column or single-column records: m/s2 "
+                         "(default), g, cm/s2 (= gal), mm/s2; also written m/s/s, m/s^2, "
+                         "cm/sec2, ...")
 APPLY_SCALE_OPT = typer.Option(False, "--apply-scale", help="Multiply each record by the "
                                "scale factor of its _SearchResults.csv row.")
 SEARCH_RESULTS_OPT = typer.Option(None, "--search-results", help="The NGA-West2 metadata "
@@ -35,6 +43,7 @@ SEARCH_RESULTS_OPT = typer.Option(None, "--search-results", help="The NGA-West2 
 def info(
     sources: list[Path] = SOURCES_ARG,
     units: str = UNITS_OPT,
+    dt: float = DT_OPT,
     apply_scale: bool = APPLY_SCALE_OPT,
     search_results: Path = SEARCH_RESULTS_OPT,
     vertical: bool = typer.Option(False, "--vertical", help="Keep vertical components "
@@ -55,9 +64,9 @@ def info(
     per = float_list("--periods", periods)
     method = check_method(pulse_method)
     check_outputs((plot, "--plot", "png"))
-    check_suite_units(sources, units)
+    check_suite_units(sources, units, dt)
     suite = read_suite(sources, units=units, apply_scale=apply_scale,
-                       search_results=search_results, vertical=vertical)
+                       search_results=search_results, vertical=vertical, dt=dt)
     rows = describe(suite, per, damping, method)
     if plot is not None:
         from rockarch.output.figures import save_figure

@@ -13,6 +13,7 @@ from rockarch.arch.geometry import make_arch
 from rockarch.arch.replacement import RULES, replacement
 from rockarch.cli._app import app
 from rockarch.cli._common import (
+    DT_OPT,
     G_OPT,
     IDA_STEPS_OPT,
     IDA_TOL_OPT,
@@ -61,10 +62,13 @@ from rockarch.systems import system as make_system
 @options(SWEEP)
 def site_oas(
     records: list[Path] = typer.Option(None, "--records", help="Record files (.AT2, "
-                                       ".ASC, K-NET, .V2c or two-column) or folders of them; "
-                                       "several may follow one --records."),
+                                       ".ASC, K-NET, .V2c, two-column, or single-column with "
+                                       "--dt) or folders of them; several may follow one "
+                                       "--records."),
     more: list[Path] = typer.Argument(None, hidden=True),
-    units: str = typer.Option(None, help="Units of two-column records: m/s2, g, cm/s2."),
+    units: str = typer.Option(None, help="Units of two-column or single-column records: "
+                              "m/s2, g, cm/s2."),
+    dt: float = DT_OPT,
     p_min: float = typer.Option(0.5, help="Smallest p [1/s]."),
     p_max: float = typer.Option(10.0, help="Largest p [1/s]."),
     p_steps: int = typer.Option(100, help="Number of p values."),
@@ -89,9 +93,10 @@ def site_oas(
         opts["alpha"] = site_mod.ALPHA
     sysobj = system_of(opts)
     check_outputs((out, "--out", "netcdf"), (plot, "--plot", "png"))
-    check_suite_units(paths, units)
+    check_suite_units(paths, units, dt)
     motions, hashes = site_mod.load_records(paths, units,
-                                            log=lambda note: echo_err(f"warning: {note}"))
+                                            log=lambda note: echo_err(f"warning: {note}"),
+                                            dt=dt)
     ps = p_grid(None, p_min, p_max, p_steps)
     if ratio_steps < 2:
         raise ValueError("--ratio-steps must be >= 2 for a site OAS")
@@ -158,8 +163,9 @@ def design(
                                        "(folder or files); the site OAS, its characteristic "
                                        "curves and the replacement's fragility are computed "
                                        "(and kept in the store) on the fly."),
-    units: str = typer.Option(None, help="Units of two-column --records: m/s2, g, cm/s2 "
-                              "(.AT2 files state their own)."),
+    units: str = typer.Option(None, help="Units of two-column or single-column --records: "
+                              "m/s2, g, cm/s2 (.AT2 files state their own)."),
+    dt: float = DT_OPT,
     pga: float = typer.Option(None, help="With --records: probability of collapse at this "
                               "PGA [m/s²]."),
     probability: float = typer.Option(None, help="With --records: the PGA at this "
@@ -220,7 +226,7 @@ def design(
     check_outputs((report, "--report", "html"), (save_site, "--save-site", "netcdf"))
     site_hazard = _hazard(args, bool(records))
     if records:
-        suite = read_records(records, units)
+        suite = read_records(records, units, dt)
         n_sims = charsite.DESIGN_P.size * charsite.DESIGN_RATIO.size * len(suite)
         with open_sweep(**sweep_options(opts), n_sims=n_sims,
                         echo=echo_err) as (executor, chunk_store):
@@ -279,6 +285,8 @@ def design(
                f"--thickness {thickness:g} "
                + (f"--site {site_file}" if site_file else
                   " ".join(f"--records {r}" for r in records))
+               + "".join(f" --{k} {v}" for k, v in (("units", units), ("dt", dt))
+                         if v is not None)
                + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
                f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
         from rockarch.output.report import write_report
@@ -313,8 +321,8 @@ def design(
 
 
 #: design options that need --records (a --site file holds its own curves).
-_RECORDS_ONLY = ("pga", "probability", "percentile", "units", "ratio_max", "save_site",
-                 "search_step")
+_RECORDS_ONLY = ("pga", "probability", "percentile", "units", "dt", "ratio_max",
+                 "save_site", "search_step")
 
 
 def _check_design_inputs(opt: dict, records: list[Path]) -> None:
@@ -427,7 +435,7 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
             raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got "
                              f"{opt['bootstrap']}")
         ratios, tol = ida_scan(opt, sysobj)
-        suite = read_records(records, opt["units"])
+        suite = read_records(records, opt["units"], opt["dt"])
         with open_sweep(**ida_sweep_options(opt, len(suite)), n_sims=ratios.size * len(suite),
                         echo=echo_err) as (executor, chunk_store):
             res = design_system(sysobj, records=suite, ratio=ratios, tol=tol,

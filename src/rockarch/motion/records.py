@@ -1,5 +1,6 @@
 """Readers for strong-motion records: PEER NGA ``.AT2`` files, ESM/ITACA ASCII files, K-NET /
-KiK-net ASCII files, COSMOS-format files (CESMD, USGS) and two-column text.
+KiK-net ASCII files, COSMOS-format files (CESMD, USGS), two-column text (time,
+acceleration) and single-column text (accelerations alone, given their time step).
 
 Records are returned as :class:`rockarch.motion.signals.GroundMotion` in m/s² with uniform
 time steps.
@@ -23,7 +24,7 @@ import numpy as np
 #: Standard gravity [m/s²] used to convert records given in units of g.
 from rockarch.core import limits
 from rockarch.core.constants import G_STANDARD
-from rockarch.core.validate import show
+from rockarch.core.validate import number, show
 from rockarch.motion.signals import GroundMotion
 
 _UNITS = {  # factor to m/s²
@@ -538,7 +539,7 @@ def _cosmos_channel(path: Path, where: tuple[list[str], int, int, int]) -> Groun
 #: Largest |acceleration| of a record sample [m/s²] (1e5 g): above it a file is not an
 #: acceleration record in the units given, and its integrals (PGV, Arias) would overflow.
 MAX_ACCELERATION = 1e5 * G_STANDARD
-#: Largest peak (in the file's own numbers) of a two-column record read without units that
+#: Largest peak (in the file's own numbers) of a text record read without units that
 #: is also a plausible peak in g: such a record is read as m/s² with a warning.
 G_LIKE_PEAK = 2.0
 #: Largest plausible PGA [m/s²] (5 g): above it a record read without units warns.
@@ -563,8 +564,15 @@ def _sample_lines(path: Path, comment: str):
             yield k, s
 
 
-def _two_numbers(path, k: int, s: str) -> tuple[float, float] | None:
-    """The two numbers of sample line ``k``; None for a text line; ValueError otherwise."""
+#: What a file of accelerations alone needs (the hint of a two-column reader's error).
+_DT_HINT = ("accelerations alone carry no time step: give it (--dt on the command line, dt= "
+            "in Python), or write 'time acceleration' lines, or a PEER .AT2 or ESM .ASC "
+            "file, whose header gives it")
+
+
+def _two_numbers(path, k: int, s: str, first: bool = False) -> tuple[float, float] | None:
+    """The two numbers of sample line ``k`` (``first``: the file's first sample line); None
+    for a text line; ValueError otherwise."""
     parts = re.split(r"[\s,;]+", s)
     try:
         vals = [float(v) for v in parts]
@@ -574,8 +582,10 @@ def _two_numbers(path, k: int, s: str) -> tuple[float, float] | None:
         if len(vals) == 4 and "," in s and "." not in s:
             hint = ": decimal commas? write numbers with a point (0.01, not 0,01)"
         elif len(vals) == 1:
-            hint = (": accelerations alone carry no time step; write 'time acceleration' "
-                    "lines, or a PEER .AT2 or ESM .ASC file, whose header gives it")
+            hint = f": {_DT_HINT}"
+        elif first:  # several values a line from the first: accelerations in rows?
+            hint = (": if these are accelerations alone, several a line, give their time "
+                    "step (--dt, dt= in Python)")
         else:
             hint = ""
         raise ValueError(f"{path}: line {k} has {len(vals)} column(s), expected 2 "
@@ -588,7 +598,7 @@ def _diagnose(path, comment: str) -> None:
     the error that names it; streams the lines, keeps none."""
     started = False
     for k, s in _sample_lines(path, comment):
-        vals = _two_numbers(path, k, s)
+        vals = _two_numbers(path, k, s, first=not started)
         if vals is None:
             if started:
                 raise ValueError(f"{path}: line {k} is not two numbers: {s[:60]!r}")
@@ -658,7 +668,7 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
                               "shorten or decimate the record")
     skip, first = 0, None
     for k, s in _sample_lines(path, comment):
-        if _two_numbers(path, k, s) is not None:
+        if _two_numbers(path, k, s, first=True) is not None:
             first = k
             break
         skip += 1
@@ -708,14 +718,223 @@ def read_two_column(path: str | Path, *, units: str = "m/s2", comment: str = "#"
     return GroundMotion(t_uniform, acc, path.name, meta)
 
 
-def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
+#: Largest time step [s] given for a single-column record without a warning: strong-motion
+#: records are sampled every 0.001-0.05 s (a larger dt was likely meant in other units).
+DT_WARN = 0.1
+
+
+class TimeStepWarning(UserWarning):
+    """A time step given for a single-column record above :data:`DT_WARN`."""
+
+
+def check_time_step(dt) -> float:
+    """``dt`` [s] given for a single-column record (:func:`read_single_column`) as a float.
+
+    TypeError if it is not a number; ValueError naming it if it is not finite and > 0 or
+    lies outside :data:`DT_RANGE` (dt is in seconds); :class:`TimeStepWarning` above
+    :data:`DT_WARN`.
+    """
+    dt = number("dt", dt)
+    if not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"dt (--dt) must be a finite time step > 0 in seconds, got {show(dt)}")
+    lo, hi = DT_RANGE
+    if dt > hi:
+        raise ValueError(f"dt (--dt) = {show(dt)} s is not the time step of a strong-motion "
+                         f"record, sampled every 0.001-0.05 s: dt is in seconds ({show(dt)} "
+                         f"ms is dt = {show(dt / 1000)}; a rate of {show(dt)} Hz is dt = "
+                         f"{show(1 / dt)})")
+    if dt < lo:
+        raise ValueError(f"dt (--dt) = {show(dt)} s is not the time step of a strong-motion "
+                         f"record, sampled every 0.001-0.05 s: dt is in seconds (at least "
+                         f"{lo:g})")
+    if dt > DT_WARN:
+        warnings.warn(TimeStepWarning(
+            f"dt = {show(dt)} s is coarser than the step of a strong-motion record "
+            f"(0.001-0.05 s): dt is in seconds"), stacklevel=3)
+    return dt
+
+
+#: Every blank and separator (tab, comma, semicolon, carriage return) of a text record as
+#: a blank (bytes.translate).
+_BLANKS = bytes.maketrans(b",;\t\r\v\f", b"      ")
+#: Bytes counted per chunk by :func:`_values_per_line` (bounds its temporary arrays).
+_CHUNK = 1 << 22
+
+
+def _values_per_line(body: bytes) -> np.ndarray:
+    """The number of blank-separated values on each line of ``body`` (blanks and
+    separators made spaces; a blank line has none), counted by numpy in chunks of whole
+    lines."""
+    out = []
+    pos = 0
+    while pos < len(body):
+        end = body.find(b"\n", pos + _CHUNK)
+        end = len(body) if end < 0 else end + 1
+        b = np.frombuffer(body, np.uint8, count=end - pos, offset=pos)
+        gap = b <= 32  # a blank, a newline or another control character
+        starts = np.flatnonzero(gap[:-1] & ~gap[1:]) + 1
+        if not gap[0]:
+            starts = np.r_[0, starts]
+        newlines = np.flatnonzero(b == 10)
+        lines = newlines.size + int(b[-1] != 10)
+        out.append(np.bincount(np.searchsorted(newlines, starts), minlength=lines))
+        pos = end
+    return np.concatenate(out) if out else np.zeros(0, dtype=np.int64)
+
+
+def _is_numbers(words: list[bytes]) -> bool:
+    """True if every word is a number."""
+    try:
+        for w in words:
+            float(w)
+    except ValueError:
+        return False
+    return True
+
+
+def _single_column_body(path: Path, comment: str) -> tuple[bytes, int]:
+    """The text of a single-column file from its first sample line on, with comments
+    removed, separators and line ends made blanks and ``\n`` (line numbers kept), and the
+    number of that first line; leading text lines (a header) are skipped."""
+    raw = path.read_bytes()
+    if b"\x00" in raw[:8192]:
+        raise ValueError(f"{path}: a binary file, not a text record (accelerations)")
+    raw = raw.removeprefix(b"\xef\xbb\xbf")  # a UTF-8 byte-order mark
+    if b"\r" in raw:  # Windows and old Mac line ends, as Python's text files read them
+        raw = raw.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
+    mark = comment.encode("latin-1")
+    pos, k, skipped = 0, 1, 0
+    while pos < len(raw):
+        end = raw.find(b"\n", pos)
+        end = len(raw) if end < 0 else end
+        words = raw[pos:end].split(mark, 1)[0].translate(_BLANKS).split()
+        if words:
+            if _is_numbers(words):
+                break
+            skipped += 1
+            if skipped > 1000:
+                raise ValueError(f"{path}: no samples in its first 1000 text lines (a "
+                                 "single-column record holds numbers, one or more a line)")
+        pos, k = end + 1, k + 1
+    body, raw = raw[pos:], b""
+    if mark in body:  # a comment line, or a comment after the values of a line
+        body = re.sub(re.escape(mark) + rb"[^\n]*", b"", body)
+    if b"," in body and b"." not in body and re.search(rb"[eE]", body) is None:
+        raise ValueError(f"{path}: commas and no decimal point: decimal commas? write numbers "
+                         "with a point (0.01, not 0,01)")
+    return body.translate(_BLANKS), k
+
+
+def _bad_line(path: Path, first: int, comment: str) -> None:
+    """Raise the error that names the first line from line ``first`` on that is not
+    numbers (the fast parser refused it)."""
+    for k, line in enumerate(_lines(path), start=1):
+        words = line.split(comment, 1)[0].translate(_SEPARATORS).split()
+        if k >= first and words and not _is_numbers(words):
+            raise ValueError(f"{path}: line {k} is not numbers: {line.strip()[:60]!r} (a "
+                             "single-column record holds only numbers after its header)")
+    raise ValueError(f"{path}: cannot be read as numbers (values that touch? separate them "
+                     "with blanks)")
+
+
+def _check_no_time_column(path, values: np.ndarray, width: int, lines: int,
+                          last: int) -> None:
+    """ValueError for a file of ``lines`` lines of ``width`` values whose first column is a
+    time axis: two numbers a line, the first increasing on every line (a two-column file,
+    uniform or not), or more, the first increasing by a uniform step. Accelerations do not
+    increase over every line of a record (from 3 lines on)."""
+    if width < 2 or lines < 3:
+        return
+    first = values[::width]
+    steps = np.diff(first)
+    if not np.all(steps > 0):
+        return
+    lead = ", ".join(f"{v:g}" for v in first[:3])
+    if width == 2 and last == 2:
+        raise ValueError(f"{path}: every line holds two numbers, the first increasing ({lead}, "
+                         "...): a two-column file (time, acceleration), which has its own "
+                         "time column: read it without dt (--dt)")
+    if np.ptp(steps) <= 1e-4 * float(np.median(steps)):
+        raise ValueError(f"{path}: the first value of every line increases by one step "
+                         f"({lead}, ...): a time column? a single-column record holds "
+                         f"accelerations only ({width} a line here)")
+
+
+def read_single_column(path: str | Path, dt: float, *, units: str = "m/s2",
+                       comment: str = "#") -> GroundMotion:
+    """Read a text record of accelerations alone (``units``: m/s2, g, cm/s2) sampled every
+    ``dt`` [s].
+
+    Every number of every sample line is one sample, in reading order: one value a line,
+    or several (rows of 5 or 8 values, as fixed-width legacy formats write them); sample k
+    is at time k·dt. Values may be separated by blanks, tabs, commas or semicolons; text
+    lines before the first sample (a header) are skipped, and so is what follows
+    ``comment`` on a line. Every sample line holds as many values as the first, the last
+    one at most as many; a text line among the samples is an error that names it. A file
+    whose every line holds two numbers, the first increasing, is a two-column file (time,
+    acceleration: :func:`read_two_column`) and is refused. ``dt`` is checked by
+    :func:`check_time_step`. At most :func:`rockarch.core.limits.max_samples` samples
+    (counted before they are parsed).
+    """
+    path = Path(path)
+    factor = _units_factor(units)
+    dt = check_time_step(dt)
+    return _single_column(path, dt, units, factor, comment)
+
+
+def _single_column(path: Path, dt: float, units: str, factor: float,
+                   comment: str) -> GroundMotion:
+    """:func:`read_single_column` of a checked ``dt`` and units ``factor``."""
+    _check_file(path)
+    body, first = _single_column_body(path, comment)
+    counts = _values_per_line(body)
+    rows = np.flatnonzero(counts)  # the sample lines (index into body's lines)
+    if rows.size == 0:
+        raise ValueError(f"{path}: no samples: a record needs at least 2 samples (numbers, "
+                         "one or more a line)")
+    n = int(counts.sum())
+    if n > limits.max_samples():  # before the values are parsed
+        raise limits.too_many(str(path), n, "samples", limits.max_samples(),
+                              "shorten or decimate the record")
+    per = counts[rows]
+    width = int(per[0])
+    odd = np.flatnonzero(per[:-1] != width)
+    if odd.size or per[-1] > width:
+        j = int(odd[0]) if odd.size else rows.size - 1
+        raise ValueError(f"{path}: line {first + int(rows[j])} holds {int(per[j])} value(s), "
+                         f"the first sample line (line {first + int(rows[0])}) {width}: every "
+                         "sample line holds as many values as the first (the last may hold "
+                         "fewer); a header line of numbers (NPTS, DT?) must start with "
+                         f"{comment!r}")
+    values = _numbers(body)
+    del body
+    if values is None or values.size != n:
+        _bad_line(path, first, comment)
+    _check_no_time_column(path, values, width, rows.size, int(per[-1]))
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        k = int(bad[0])
+        line = first + int(rows[np.searchsorted(np.cumsum(per), k, side="right")])
+        raise ValueError(f"{path}: line {line} holds a value that is not a finite number "
+                         f"(sample {k})")
+    _check_samples(path, values)
+    acc = values * factor
+    check_acceleration(path, acc)
+    meta = {"source": str(path), "dt": dt, "npts": int(acc.size), "format": "single-column",
+            "units_in_file": units}
+    return GroundMotion(np.arange(acc.size) * dt, acc, path.name, meta)
+
+
+def read_record(path: str | Path, *, units: str | None = None,
+                dt: float | None = None) -> GroundMotion:
     """Read one ground-motion record (acceleration history) from a file, by its format.
 
     The format is recognised from the file: ``.AT2`` (or a PEER header under any name) as
     PEER NGA; a file that opens with ``KEY: value`` lines giving NDATA and
     SAMPLING_INTERVAL_S as ESM/ITACA ASCII; one whose first line is ``Origin Time ...`` as
     K-NET / KiK-net ASCII; one whose first line ends with ``(Format v01.20 with 13 text
-    lines)`` as COSMOS; anything else as two-column text (time [s], acceleration). See
+    lines)`` as COSMOS; anything else as two-column text (time [s], acceleration), or, with
+    ``dt``, as single-column text (accelerations alone, one or more a line). See
     docs/sites.md, "Record suites".
 
     Parameters
@@ -723,32 +942,47 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     path : str or path
         The record file. ``FILE#N``: channel N of a COSMOS file that holds several.
     units : str, optional
-        Acceleration units of a two-column file: ``"m/s2"`` (default), ``"g"``,
-        ``"cm/s2"`` (or ``"gal"``), ``"mm/s2"``. The other formats state their own, and
-        ``units`` does not apply to them.
+        Acceleration units of a text file (two-column or single-column): ``"m/s2"``
+        (default), ``"g"``, ``"cm/s2"`` (or ``"gal"``), ``"mm/s2"``. The other formats
+        state their own, and ``units`` does not apply to them.
+    dt : float, optional
+        Time step [s] of a single-column text file: its data lines hold accelerations alone,
+        every number one sample in reading order (one a line, or rows of several as legacy
+        fixed-width formats write them), sample k at time k·dt; leading text lines (a
+        header) and ``#`` comments are skipped. Strong-motion records are sampled every
+        0.001-0.05 s; dt is in seconds. The other formats, two-column text included, give
+        their own time step, and ``dt`` is refused for them.
 
     Returns
     -------
     GroundMotion
         Times ``t`` [s] (uniform step) and accelerations ``a`` [m/s²], converted from the
         file's units; ``name`` (file name and, where the header gives them, event and
-        station) and ``meta`` (the header's metadata).
+        station) and ``meta`` (the header's metadata; for text files ``format``
+        (``"two-column"`` or ``"single-column"``), ``dt``, ``npts``, ``units_in_file``,
+        ``source``).
 
     Raises
     ------
     TypeError
-        If ``path`` is not a path or ``units`` not a string.
+        If ``path`` is not a path, ``units`` not a string or ``dt`` not a number.
     ValueError
         If the file does not exist, is unreadable or malformed (the message names the file
         and line), has a non-uniform time step, more samples than
         :func:`rockarch.core.limits.max_samples`, unknown ``units``, is an older CSMIP
-        ``.V1``/``.V2`` file, or ``#N`` names a channel of a file that is not COSMOS.
+        ``.V1``/``.V2`` file, or ``#N`` names a channel of a file that is not COSMOS. A
+        text file of accelerations alone without ``dt``; a ``dt`` that is not finite and
+        > 0 or lies outside :data:`DT_RANGE` (:func:`check_time_step`); a ``dt`` given for
+        a file that gives its own time step (``.AT2``, ESM, K-NET, COSMOS, two-column
+        text); a text line among the samples of a single-column file.
 
     Warns
     -----
     UnitsWarning
-        A two-column file read without ``units`` whose peak is at most
-        :data:`G_LIKE_PEAK` (plausible in g too) or above :data:`MAX_PLAUSIBLE_PGA` (5 g).
+        A text file read without ``units`` whose peak is at most :data:`G_LIKE_PEAK`
+        (plausible in g too) or above :data:`MAX_PLAUSIBLE_PGA` (5 g).
+    TimeStepWarning
+        A ``dt`` above :data:`DT_WARN` (0.1 s): coarser than a strong-motion record's.
 
     Examples
     --------
@@ -757,35 +991,51 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     >>> m = ra.read_record(bundled_record_path(180))
     >>> round(m.pga, 3), round(float(m.t[1] - m.t[0]), 3)
     (2.754, 0.01)
+
+    A file of accelerations alone (here in g, one a line) needs its time step:
+
+    >>> import os, tempfile
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = os.path.join(folder, "elcentro_g.txt")
+    ...     np.savetxt(path, m.a / 9.80665)
+    ...     s = ra.read_record(path, dt=0.01, units="g")
+    >>> s.meta["format"], s.meta["npts"], round(s.pga, 3)
+    ('single-column', 5372, 2.754)
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a file path (str or Path), got {type(path).__name__}")
     if units is not None and not isinstance(units, str):
         raise TypeError(f"units must be a string such as 'm/s2', 'g' or 'cm/s2', got "
                         f"{type(units).__name__}")
+    if dt is not None:
+        dt = check_time_step(dt)
     path, channel = split_channel(path)
     if channel is not None:
         _check_file(path)
         if not is_cosmos(path):
             raise ValueError(f"{path}#{channel}: '#N' picks a channel of a COSMOS file of "
                              f"several, and {path.name} is not a COSMOS file")
+        _own_step(path, "COSMOS", dt)
         return read_cosmos(path, channel)
     if path.suffix.lower() == ".at2":
+        _own_step(path, "PEER .AT2", dt)
         return read_at2(path)
     _check_file(path)
-    if is_at2(path):  # a PEER file under another name
-        return read_at2(path)
-    if is_esm(path):
-        return read_esm(path)
-    if is_knet(path):
-        return read_knet(path)
-    if is_cosmos(path):
-        return read_cosmos(path)
+    for fmt, test, read in (("PEER .AT2", is_at2, read_at2), ("ESM", is_esm, read_esm),
+                            ("K-NET", is_knet, read_knet), ("COSMOS", is_cosmos, read_cosmos)):
+        if test(path):  # a PEER file under another name too
+            _own_step(path, fmt, dt)
+            return read(path)
     if path.suffix.lower() in (".v1", ".v2"):
         raise ValueError(f"{path}: not a COSMOS-format file (its first line should end with "
                          "'(Format v01.20 with 13 text lines)'); the older CSMIP .V1/.V2 format "
                          "is not read: download the COSMOS format (V2c) from CESMD")
-    motion = read_two_column(path, units=units or "m/s2")
+    if dt is None:
+        motion = read_two_column(path, units=units or "m/s2")
+    else:
+        unit = units or "m/s2"
+        motion = _single_column(path, dt, unit, _units_factor(unit), "#")
     if units is None and motion.pga <= G_LIKE_PEAK:
         warnings.warn(UnitsWarning(
             f"{path.name}: read as m/s² (no units given), but its peak {motion.pga:.3g} is "
@@ -799,8 +1049,17 @@ def read_record(path: str | Path, *, units: str | None = None) -> GroundMotion:
     return motion
 
 
+def _own_step(path: Path, fmt: str, dt: float | None) -> None:
+    """ValueError if ``dt`` is given for a ``fmt`` file, whose header gives its time step."""
+    if dt is not None:
+        raise ValueError(f"{path}: a {fmt} file gives its own time step (in its header); dt "
+                         "(--dt) is for text files of accelerations alone and does not apply "
+                         "to it: leave it out")
+
+
 class UnitsWarning(UserWarning):
-    """A two-column record read without units whose peak is also plausible in g."""
+    """A text record read without units whose peak is also plausible in g (or not plausible
+    in m/s²)."""
 
 
 _BUNDLED = {180: "RSN6_IMPVALL.I_I-ELC180-hor1.AT2", 270: "RSN6_IMPVALL.I_I-ELC270-hor2.AT2"}

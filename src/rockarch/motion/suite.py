@@ -2,10 +2,10 @@
 
 A suite is what an engineer downloads from the PEER NGA-West2 database: ``.AT2`` files and a
 ``_SearchResults.csv`` listing each record's RSN, event, station, magnitude, distance, Vs30
-and scale factor. :func:`read_suite` reads such a folder (or any list of ``.AT2`` and
-two-column files; the csv is optional) into a :class:`Suite` of :class:`SuiteRecord`.
-Without the csv, event, station and component come from the ``.AT2`` header line
-``EVENT, DATE, STATION, COMPONENT``. Format and matching rules: docs/sites.md.
+and scale factor. :func:`read_suite` reads such a folder (or any list of ``.AT2`` files and
+two-column or single-column text files; the csv is optional) into a :class:`Suite` of
+:class:`SuiteRecord`. Without the csv, event, station and component come from the ``.AT2``
+header line ``EVENT, DATE, STATION, COMPONENT``. Format and matching rules: docs/sites.md.
 """
 
 from __future__ import annotations
@@ -29,8 +29,10 @@ from rockarch.core.paths import atomic_write
 from rockarch.motion import intensity
 from rockarch.motion.records import (
     G_LIKE_PEAK,
+    TimeStepWarning,
     UnitsWarning,
     bundled_record_path,
+    check_time_step,
     is_cosmos,
     read_cosmos_channels,
     read_record,
@@ -39,7 +41,8 @@ from rockarch.motion.records import (
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.velocity_pulse import baker_pulse, check_method
 
-#: File suffixes read from a folder as two-column records (``.AT2`` is always read).
+#: File suffixes read from a folder as text records (``.AT2`` is always read): two-column
+#: (time, acceleration), or single-column (accelerations alone) when a time step is given.
 TWO_COLUMN_SUFFIXES = (".txt", ".dat", ".acc", ".csv", ".tsv")
 #: Suffix of ESM / ITACA ASCII files, read from a folder too (any file that opens with
 #: ``KEY: value`` header lines, EVENT_NAME, NDATA or SAMPLING_INTERVAL_S among them, is read
@@ -238,9 +241,10 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
 
     A folder contributes its ``.AT2`` files, its ESM/ITACA ``.ASC`` files, its K-NET /
     KiK-net files (:data:`KNET_SUFFIXES`), its COSMOS files (:data:`COSMOS_SUFFIXES`) and
-    its two-column files (suffixes :data:`TWO_COLUMN_SUFFIXES`), those not starting with
-    ``_``, sorted by name, and its ``_SearchResults.csv`` if present. Files given explicitly
-    are taken as they are (a file named ``*SearchResults*.csv`` is taken as metadata).
+    its text files (two-column or single-column, suffixes :data:`TWO_COLUMN_SUFFIXES`),
+    those not starting with ``_``, sorted by name, and its ``_SearchResults.csv`` if
+    present. Files given explicitly are taken as they are (a file named
+    ``*SearchResults*.csv`` is taken as metadata).
     """
     files: list[Path] = []
     metas: list[Path] = []
@@ -259,7 +263,7 @@ def record_files(sources) -> tuple[list[Path], list[Path]]:
                            key=lambda q: q.name)
             if not found:
                 raise ValueError(f"{p}: folder holds no record (.AT2, .ASC, K-NET .NS/.EW, "
-                                 f"COSMOS .V2c or two-column "
+                                 f"COSMOS .V2c or text "
                                  f"{'/'.join(TWO_COLUMN_SUFFIXES)})")
             files.extend(found)
             metas.extend(q for q in sorted(p.iterdir())
@@ -462,21 +466,24 @@ def _is_vertical(component) -> bool:
     return c in VERTICAL or (len(c) == 3 and c.isalpha() and c[2] == "z")
 
 
-def _read_all(files, units, g_like: list):
+def _read_all(files, units, dt, g_like: list):
     """(file, record name, motion) of every record of ``files``: one per file, one per
-    acceleration channel of a COSMOS file that holds several (named ``FILE#N``). A
-    two-column file read without units whose peak is plausible in g goes into ``g_like``."""
+    acceleration channel of a COSMOS file that holds several (named ``FILE#N``). A text
+    file read without units whose peak is plausible in g goes into ``g_like``; ``dt``
+    (checked by the caller, who warned of a coarse one once) goes to every file."""
     for f in files:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", UnitsWarning)
-            if f.is_file() and is_cosmos(f):
+            if f.is_file() and is_cosmos(f) and dt is None:
                 motions = read_cosmos_channels(f)
-            else:
-                motions = (read_record(f, units=units),)
+            else:  # with dt, read_record refuses a COSMOS file (it gives its own step)
+                motions = (read_record(f, units=units, dt=dt),)
         for w in caught:
             if issubclass(w.category, UnitsWarning):
                 if motions[0].pga <= G_LIKE_PEAK:  # an implausible PGA has its own note
                     g_like.append(f.name)
+            elif issubclass(w.category, TimeStepWarning):
+                continue  # said once, by read_suite
             else:
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
         base = split_channel(f)[0]
@@ -486,17 +493,20 @@ def _read_all(files, units, g_like: list):
 
 
 def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
-               search_results: str | Path | None = None, vertical: bool = False) -> Suite:
+               search_results: str | Path | None = None, vertical: bool = False,
+               dt: float | None = None) -> Suite:
     """Read a suite of ground-motion records from files and folders (see :func:`record_files`).
 
     Parameters
     ----------
     sources : path or list of paths
-        Record files (``.AT2``, ESM ``.ASC``, K-NET, COSMOS, two-column) and/or folders of
-        them. A COSMOS file of several channels gives one record per acceleration channel,
-        named ``FILE#1``, ``FILE#2``, ...; ``FILE#N`` given as a source gives channel N.
+        Record files (``.AT2``, ESM ``.ASC``, K-NET, COSMOS, two-column or, with ``dt``,
+        single-column text) and/or folders of them. A COSMOS file of several channels
+        gives one record per acceleration channel, named ``FILE#1``, ``FILE#2``, ...;
+        ``FILE#N`` given as a source gives channel N.
     units : str, optional
-        Units of two-column records (m/s2 by default; the other formats state their own).
+        Units of text records, two-column or single-column (m/s2 by default; the other
+        formats state their own).
     apply_scale : bool
         Multiply each record by the scale factor of its csv row.
     search_results : path, optional
@@ -507,6 +517,11 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         ``UP``); by default they are left out and listed in ``notes`` (rocking structures
         are assessed under horizontal ground motion). KiK-net borehole records (a motion
         at depth) are left out and listed in ``notes`` too.
+    dt : float, optional
+        Time step [s] of single-column text records (accelerations alone, one or more a
+        line: :func:`rockarch.motion.records.read_record`), given to every record file: a
+        folder of such files, all sampled at ``dt``. A file that gives its own time step
+        (``.AT2``, ESM, K-NET, COSMOS, two-column text) is then an error.
 
     Returns
     -------
@@ -517,10 +532,13 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
 
     Raises
     ------
+    TypeError
+        If ``dt`` is not a number.
     ValueError
         If a source does not exist or holds no record, a record cannot be read (see
-        :func:`rockarch.motion.records.read_record`), several search-results files are
-        found, or ``apply_scale`` has no csv or a record without a csv row.
+        :func:`rockarch.motion.records.read_record`), ``dt`` is not a time step in seconds
+        or is given for a file with its own, several search-results files are found, or
+        ``apply_scale`` has no csv or a record without a csv row.
 
     Notes
     -----
@@ -529,6 +547,8 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     unknown). A record missing from the csv or with an implausible PGA (outside
     :data:`PGA_RANGE`: wrong units?) is listed in ``notes``.
     """
+    if dt is not None:
+        dt = check_time_step(dt)  # before any file; a coarse dt warns once, not per file
     files, metas = record_files(sources)
     if search_results is not None:
         metas = [Path(search_results)]
@@ -541,8 +561,9 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
     if apply_scale and not rows:
         raise ValueError("--apply-scale needs an NGA-West2 _SearchResults.csv (none found)")
     records, notes, g_like, seen = [], [], [], set()
+    text = "two-column" if dt is None else "single-column"
     total = 0
-    for f, name, motion in _read_all(files, units, g_like):
+    for f, name, motion in _read_all(files, units, dt, g_like):
         total += motion.t.size
         if total > limits.max_suite_samples():  # before the next record is read
             raise limits.too_many(f"the suite (up to {name})", total, "suite_samples",
@@ -578,9 +599,9 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         lo, hi = PGA_RANGE
         if not lo <= motion.pga <= hi:
             notes.append(f"{name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
-                         "wrong units? (two-column files: --units g, m/s2 or cm/s2)")
+                         f"wrong units? ({text} files: --units g, m/s2 or cm/s2)")
     if g_like:
-        notes.append(f"{len(g_like)} two-column record(s) read as m/s² without --units have "
+        notes.append(f"{len(g_like)} {text} record(s) read as m/s² without --units have "
                      f"peaks of at most {G_LIKE_PEAK:g}, plausible in g too ({g_like[0]}"
                      f"{', ...' if len(g_like) > 1 else ''}): give --units m/s2 or --units g")
     if not records:

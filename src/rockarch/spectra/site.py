@@ -53,16 +53,16 @@ def record_paths(paths) -> list[Path]:
     return record_files(paths)[0]
 
 
-def load_records(paths, units: str | None = None, log: Callable[[str], None] | None = None
-                 ) -> tuple[list[GroundMotion], list[str]]:
+def load_records(paths, units: str | None = None, log: Callable[[str], None] | None = None,
+                 *, dt: float | None = None) -> tuple[list[GroundMotion], list[str]]:
     """Read the records as a suite (:func:`rockarch.motion.suite.read_suite`: the same folders and
-    vertical components left out as every ``--records``) and their file hashes; reject
-    implausible PGAs (wrong units) and a record given twice (the same samples under two
-    names: it would count twice in the percentile). ``log`` receives the suite's notes (a
-    record left out, ...)."""
+    vertical components left out as every ``--records``; ``dt``: the time step [s] of
+    single-column files) and their file hashes; reject implausible PGAs (wrong units) and a
+    record given twice (the same samples under two names: it would count twice in the
+    percentile). ``log`` receives the suite's notes (a record left out, ...)."""
 
     motions, hashes = [], []
-    suite = read_suite(paths, units=units)
+    suite = read_suite(paths, units=units, dt=dt)
     if log is not None:
         for note in suite.notes:
             log(note)
@@ -72,7 +72,7 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
             raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
-                             "not plausible: wrong units? (two-column files: --units g, "
+                             "not plausible: wrong units? (text files: --units g, "
                              "m/s2 or cm/s2)")
         motions.append(m)
         hashes.append(hashlib.sha256(path.read_bytes()).hexdigest())
