@@ -229,6 +229,32 @@ def test_design_cli_fourhinge_with_a_site_file(block_site, tmp_path):
     assert (out["p"], out["ap_min"], out["ratio"]) == (sys_.p_ref, sys_.ap_min, ratio)
 
 
+@pytest.mark.parametrize("structure", [
+    ["--system", "mdof", "--column", "0.4,1.0", "--friction", "0.6"],
+    ["--system", "fourhinge", "--shape", "circular", "--span", "10", "--rise", "2.89",
+     "--thickness", "0.35"],
+    ["--system", "block", "--alpha", "0.1", "--p", "3"],
+])
+def test_design_cli_any_system_with_a_site_file_says_islands_are_not_searched(
+        block_site, tmp_path, structure):
+    """A site file holds each record's first collapse on its grid, whatever reads it: the
+    --system routes say so as the arch's does (a note on stderr, JSON caveats, the
+    report)."""
+    f = tmp_path / "site.nc"
+    site.save(block_site, f)
+    rep = tmp_path / "r.html"
+    res = runner.invoke(app, ["design", *structure, "--site", str(f), "--json", "--report",
+                              str(rep)])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["method"] == "equivalent-sdof"
+    assert len(out["caveats"]) == 1
+    assert out["caveats"][0].startswith("a site file holds each record's first collapse on "
+                                        "its ratio grid; collapse islands narrower than")
+    assert res.stderr.startswith("note: a site file holds each record's first collapse")
+    assert "holds within these caveats" in rep.read_text()
+
+
 def test_design_records_units(clips, tmp_path):
     # two-column records in cm/s² read with --units cm/s2 give the design of the same
     # records in m/s² (a rigid block: the Housner kernel, fast); without --units they are

@@ -173,11 +173,13 @@ SYSTEM_ASSUMPTIONS = {
 }
 
 
-def system_report_html(result: SystemDesign, *, command: str, suite=None) -> str:
+def system_report_html(result: SystemDesign, *, command: str, suite=None,
+                       caveats: Sequence[str] = ()) -> str:
     """The design report of any structure (:func:`rockarch.design.design_system`) as one
     HTML page: the safe PGA, the structure's p and ap,min, the records' collapse points
     and fragility (``suite``: their response spectra and file hashes), the assumptions and
-    the command that reruns it."""
+    the command that reruns it; ``caveats`` (what the check did not search or bound)
+    follow the result, as in :func:`report_html`."""
     from rockarch.output.fragility_plots import fragility_html
 
     r, g = result, result.g
@@ -194,7 +196,11 @@ def system_report_html(result: SystemDesign, *, command: str, suite=None) -> str
 <div class="result">Largest safe peak ground acceleration:
 <b>{r.pga_safe:.3f} m/s² = {r.pga_safe / g:.3f} g</b><br>
 ap/ap,min = {r.ratio:.4f}{lower} ({escape(curve)}) at p = {r.p:.4f} 1/s;
-ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.</div>\n"""
+ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.
+{"" if not caveats else
+ "Below this PGA the structure may move; that it does not collapse holds within these "
+ "caveats:"}
+{"".join(f'<p class="caveat">{escape(c)}</p>' for c in caveats)}</div>\n"""
     frag = r.fragility
     if frag is not None:
         ida = frag.ida
@@ -217,6 +223,8 @@ ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.</div>\n"""
     return page("rockarch design check", body)
 
 
-def write_system_report(result: SystemDesign, path, *, command: str, suite=None) -> Path:
+def write_system_report(result: SystemDesign, path, *, command: str, suite=None,
+                        caveats: Sequence[str] = ()) -> Path:
     """Write :func:`system_report_html` atomically."""
-    return write_text(path, system_report_html(result, command=command, suite=suite))
+    return write_text(path, system_report_html(result, command=command, suite=suite,
+                                               caveats=caveats))
