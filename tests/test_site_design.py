@@ -255,6 +255,35 @@ def test_design_cli_any_system_with_a_site_file_says_islands_are_not_searched(
     assert "holds within these caveats" in rep.read_text()
 
 
+@pytest.mark.parametrize("structure, named", [
+    (["--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness", "0.35"],
+     "the design of the circular arch l = 10 m, f = 2.89 m, d = 0.35 m reads"),
+    (["--system", "mdof", "--column", "0.4,1.0", "--friction", "0.6"],
+     "the design of the block reads"),
+])
+def test_design_on_another_structures_site_file_names_the_right_one(block_site, tmp_path,
+                                                                    structure, named):
+    """A site file of a trilithon (site-oas --system mdof --colonnade 2 ..., its attrs; the
+    file's grid is the block's here, for speed) read by the design of another structure:
+    the one line names the file's structure and the one designed, and asks for a block's
+    site file or --records for the latter (it said 'for this structure give --records'
+    right after naming the trilithon)."""
+    tri = "trilithon: 2 columns 0.3x2 m, spacing 1 m, lintel 0.4 m"
+    ds = block_site.copy()
+    ds.attrs = {**ds.attrs, "system": tri}
+    f = tmp_path / "tri_site.nc"
+    site.save(ds, f)
+    res = runner.invoke(app, ["design", *structure, "--site", str(f)])
+    assert res.exit_code == 2, res.output
+    err = res.stderr
+    assert err.startswith(f"error: {f}: this is the site OAS of {tri}, not of a slender "
+                          "block") and err.count("\n") == 1, err
+    assert named in err and err.rstrip().endswith(
+        "reads a block's site OAS (rockarch site-oas without --system): give one, or "
+        "--records"), err
+    assert "this structure" not in err
+
+
 def test_design_records_units(clips, tmp_path):
     # two-column records in cm/s² read with --units cm/s2 give the design of the same
     # records in m/s² (a rigid block: the Housner kernel, fast); without --units they are

@@ -231,7 +231,10 @@ def design(
         if save_site is not None:
             site_mod.save(site_ds, save_site)
     else:
-        site_ds = site_mod.check_block_site(site_mod.load(site_file), site_file)
+        site_ds = site_mod.check_block_site(
+            site_mod.load(site_file), site_file,
+            structure=f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = "
+                      f"{thickness:g} m")
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
     repl = replacement(arch, g=g, axis=replacement_axis, mass=replacement_mass)
@@ -420,8 +423,9 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
           "g": opt["g"], "pga": opt["pga"], "probability": _conditional(opt)}
     suite, caveats = None, []
     if opt["site_file"] is not None:
-        res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
-                            g=kw["g"])
+        ds = site_mod.check_block_site(site_mod.load(opt["site_file"]), opt["site_file"],
+                                       structure=sysobj.name)
+        res = design_system(sysobj, site=ds, curve=kw["curve"], g=kw["g"])
         # the equivalent SDOF reads the site file's first collapses, as the arch design
         caveats = [site_file_note("structure", "docs/sites.md")]
         for c in caveats:
