@@ -195,6 +195,11 @@ def test_design_cli_records_any_system(folder, tmp_path):
     assert "rockarch design --column" in html and "--system mdof" in html
     assert "--friction 0.5" in html
     assert f"{out['pga_safe']:.3f} m/s²" in html and "SHA-256" in html
+    # ap,min of an assembly as computed: the non-associative iteration and the macro-block
+    # search (docs/theory.md §10); the associative LP alone is friction="associative" (the
+    # report said ap,min was that LP, Eq. (10.4), and could be too high)
+    assert "with associative Coulomb friction" not in html
+    assert "non-associative Coulomb friction, docs/theory.md Eqs. (10.4)–(10.9)" in html
 
 
 def test_design_cli_search_step(folder):

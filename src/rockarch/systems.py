@@ -446,7 +446,7 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     friction : float, optional
         mdof: Coulomb friction coefficient of every joint [-] (None: no sliding, the chain
         model bit for bit); ``ap_min`` is then the friction-aware collapse acceleration
-        (docs/theory.md Eq. (10.4); one block: min(mu, B/H)·g).
+        (non-associative, docs/theory.md Eqs. (10.4)–(10.9); one block: min(mu, B/H)·g).
     spans, pier_height, pier_width, pier_blocks, abutments : optional
         mdof: the arch on piers (``spans`` 1) or a bridge of ``spans`` equal arches; pier
         height and width [m], blocks per pier, abutments instead of end piers

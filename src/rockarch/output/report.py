@@ -153,9 +153,15 @@ SYSTEM_ASSUMPTIONS = {
         "scaled up until it collapses (incremental dynamic analysis, docs/theory.md Eq. "
         "(11.30)); the safe PGA is the lowest collapse PGA over the records (envelope) or "
         "their chosen percentile, Eq. (11.34).",
-        "ap,min (the unit of the scan) is the limit-analysis value with associative Coulomb "
-        "friction, Eq. (10.4); where a contact must slide while it opens it can be too high "
-        "(docs/theory.md §10); the time histories do not depend on it.",
+        "ap,min (the unit of the scan) is the structure's limit value (a block: g·tan "
+        "alpha; a four-hinge mechanism: docs/theory.md §5); for an MDOF assembly it is the "
+        "limit analysis with non-associative Coulomb friction, docs/theory.md Eqs. "
+        "(10.4)–(10.9): from the associative LP (10.4), an iteration of LPs whose shear "
+        "capacities are mu times the previous normal forces (10.6)–(10.8), so that a joint "
+        "slides without opening and an open joint carries no shear, and a search of rigid "
+        "clusters rocking about one corner (10.9), the smaller of the two. These are "
+        "solutions of the non-associative problem, not bounds (a lower mechanism of several "
+        "clusters may exist, docs/theory.md §10); the time histories do not depend on it.",
         "Collapse is declared once the structure, frozen at rest, would move away under "
         "gravity alone (past its neutral configuration, docs/theory.md §6): conservative.",
         "Records that do not collapse the structure up to the top of the scan are censored; "
