@@ -166,7 +166,34 @@ def test_mdof_structure_options(folder):
                               "--t-free", "2", "--bootstrap", "0", "--json"])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
-    assert out["system"] == "2-block column" and len(out["points"]) == 2
+    assert len(out["points"]) == 2
+    # given in metres and analysed at --p 2: the label and the JSON say it was scaled
+    from rockarch import systems
+    own = systems.system("mdof", column=[(0.4, 2.0), (0.4, 2.0)]).p_ref
+    assert out["scale"] == pytest.approx((own / 2) ** 2, rel=1e-12)
+    assert out["p_structure"] == pytest.approx(own, rel=1e-12)
+    assert out["system"].startswith("2-block column scaled ×")
+
+
+def test_mdof_structure_scaled_to_p_says_so(folder):
+    """A wall of 0.4 m blocks has p = 7.21 1/s; at --p 2 its blocks are 13 times as large:
+    the label and the JSON say so (they named the wall as given at p = 2)."""
+    from rockarch import systems
+    own = systems.system("mdof", wall="2,2", block="0.4,0.2").p_ref
+    base = ["fragility", "--system", "mdof", "--wall", "2,2", "--block", "0.4,0.2",
+            "--records", str(folder), "--no-store", "--ratio-steps", "2", "--ratio-max",
+            "1.5", "--tol", "0.5", "--bootstrap", "0"]
+    res = runner.invoke(app, [*base, "--p", "2"])
+    assert res.exit_code == 0, res.output
+    k = (own / 2) ** 2
+    assert (f"fragility of wall 2x2 blocks 0.4x0.2 m scaled ×{k:.4g} (size ∝ 1/p², as "
+            f"given p = {own:.4g} 1/s) at p = 2 1/s") in res.stdout, res.stdout
+    out = json.loads(runner.invoke(app, [*base, "--p", "2", "--json"]).stdout)
+    assert out["p"] == 2 and out["scale"] == pytest.approx(k, rel=1e-12)
+    assert out["p_structure"] == pytest.approx(own, rel=1e-12)
+    # at its own p (no --p) nothing is scaled: no scale in the JSON
+    own_out = json.loads(runner.invoke(app, [*base, "--json"]).stdout)
+    assert own_out["system"] == "wall 2x2 blocks 0.4x0.2 m" and "scale" not in own_out
 
 
 def test_im_all_reports_the_dispersion_of_every_im_on_one_ida(folder):

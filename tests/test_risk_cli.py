@@ -103,6 +103,28 @@ def test_inline_fragility_runs_the_ida_in_the_hazards_im(folder, tmp_path):
                                                        rel=1e-12)
 
 
+@pytest.mark.parametrize("extra, named", [
+    (["--system", "mdof", "--column", "0.4,1", "--friction", "0.6"],
+     "--system, --column, --friction"),
+    (["--system", "block", "--alpha", "0.1"], "--alpha"),
+    (["--wall", "2,2", "--block", "0.4,0.2"], "--wall, --block"),
+    (["--end-piers"], "--end-piers"),
+    (["--ratio-steps", "9"], "--ratio-steps"),
+    (["--tol", "0.5", "--search-step", "0.1"], "--tol, --search-step"),
+    (["--island-step", "3", "--g", "9.8", "--t-free", "5"], "--t-free, --g, --island-step"),
+    (["--units", "g", "--workers", "1", "--no-store"], "--units, --workers, --no-store"),
+])
+def test_fragility_file_refuses_the_inline_options(frag_json, extra, named):
+    # a fragility file holds its structure and scan: every option that builds one inline
+    # is refused with it (they were silently ignored), named in the one line
+    res = runner.invoke(app, ["risk", "--hazard", TWO_COLUMN, "--fragility", str(frag_json),
+                              *extra])
+    assert res.exit_code == 2, res.stdout
+    assert res.stderr.startswith("error: give the fragility: either --fragility"), res.stderr
+    assert res.stderr.count("\n") == 1 and f"not both ({named} given" in res.stderr, \
+        res.stderr
+
+
 @pytest.mark.parametrize("extra, msg", [
     ([], "give the fragility: either --fragility FRAG.json"),
     (["--fragility", "F", "--p", "2"], "give the fragility: either --fragility"),

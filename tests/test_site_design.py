@@ -195,6 +195,11 @@ def test_design_cli_records_any_system(folder, tmp_path):
     assert "rockarch design --column" in html and "--system mdof" in html
     assert "--friction 0.5" in html
     assert f"{out['pga_safe']:.3f} m/s²" in html and "SHA-256" in html
+    # ap,min of an assembly as computed: the non-associative iteration and the macro-block
+    # search (docs/theory.md §10); the associative LP alone is friction="associative" (the
+    # report said ap,min was that LP, Eq. (10.4), and could be too high)
+    assert "with associative Coulomb friction" not in html
+    assert "non-associative Coulomb friction, docs/theory.md Eqs. (10.4)–(10.9)" in html
 
 
 def test_design_cli_search_step(folder):
@@ -227,6 +232,61 @@ def test_design_cli_fourhinge_with_a_site_file(block_site, tmp_path):
     sys_ = ra.system("fourhinge", shape="circular", span=10, rise=2.89, thickness=0.35)
     ratio, _ = site.curve_at(block_site, sys_.p_ref, "envelope")
     assert (out["p"], out["ap_min"], out["ratio"]) == (sys_.p_ref, sys_.ap_min, ratio)
+
+
+@pytest.mark.parametrize("structure", [
+    ["--system", "mdof", "--column", "0.4,1.0", "--friction", "0.6"],
+    ["--system", "fourhinge", "--shape", "circular", "--span", "10", "--rise", "2.89",
+     "--thickness", "0.35"],
+    ["--system", "block", "--alpha", "0.1", "--p", "3"],
+])
+def test_design_cli_any_system_with_a_site_file_says_islands_are_not_searched(
+        block_site, tmp_path, structure):
+    """A site file holds each record's first collapse on its grid, whatever reads it: the
+    --system routes say so as the arch's does (a note on stderr, JSON caveats, the
+    report)."""
+    f = tmp_path / "site.nc"
+    site.save(block_site, f)
+    rep = tmp_path / "r.html"
+    res = runner.invoke(app, ["design", *structure, "--site", str(f), "--json", "--report",
+                              str(rep)])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["method"] == "equivalent-sdof"
+    assert len(out["caveats"]) == 1
+    assert out["caveats"][0].startswith("a site file holds each record's first collapse on "
+                                        "its ratio grid; collapse islands narrower than")
+    assert res.stderr.startswith("note: a site file holds each record's first collapse")
+    assert "holds within these caveats" in rep.read_text()
+
+
+@pytest.mark.parametrize("structure, named", [
+    (["--shape", "circular", "--span", "10", "--rise", "2.89", "--thickness", "0.35"],
+     "the design of the circular arch l = 10 m, f = 2.89 m, d = 0.35 m reads"),
+    (["--system", "mdof", "--column", "0.4,1.0", "--friction", "0.6"],
+     "the design of the block reads"),
+])
+def test_design_on_another_structures_site_file_names_the_right_one(block_site, tmp_path,
+                                                                    structure, named):
+    """A site file of a trilithon (site-oas --system mdof --colonnade 2 ..., its attrs; the
+    file's grid is the block's here, for speed) read by the design of another structure:
+    the one line names the file's structure and the one designed, and asks for a block's
+    site file or --records for the latter (it said 'for this structure give --records'
+    right after naming the trilithon)."""
+    tri = "trilithon: 2 columns 0.3x2 m, spacing 1 m, lintel 0.4 m"
+    ds = block_site.copy()
+    ds.attrs = {**ds.attrs, "system": tri}
+    f = tmp_path / "tri_site.nc"
+    site.save(ds, f)
+    res = runner.invoke(app, ["design", *structure, "--site", str(f)])
+    assert res.exit_code == 2, res.output
+    err = res.stderr
+    assert err.startswith(f"error: {f}: this is the site OAS of {tri}, not of a slender "
+                          "block") and err.count("\n") == 1, err
+    assert named in err and err.rstrip().endswith(
+        "reads a block's site OAS (rockarch site-oas without --system): give one, or "
+        "--records"), err
+    assert "this structure" not in err
 
 
 def test_design_records_units(clips, tmp_path):

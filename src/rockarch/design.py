@@ -249,7 +249,7 @@ def design_system(system, *, records=None, names=None, site: xr.Dataset | None =
     common = {"system": system.name, "p": p, "ap_min": ap_min, "curve": curve, "g": g,
               "sliding": sliding, "ap_min_no_sliding": rock}
     if site is not None:
-        site_mod.check_block_site(site)
+        site_mod.check_block_site(site, structure=system.name)
         if sliding:
             raise ValueError(f"the collapse mechanism of {system.name} slides (ap,min = "
                              f"{ap_min:.4g} m/s² with friction, {rock:.4g} m/s² without): a "

@@ -334,11 +334,24 @@ def _check_types(given: dict) -> None:
                             f"{type(v).__name__}")
 
 
-def _need(kind: str, **given) -> None:
+def _need(by: str | list[str], **given) -> None:
+    """Raise a ValueError naming the options of ``given`` that are None.
+
+    Parameters
+    ----------
+    by : str or list of str
+        What needs them: a system kind ("mdof": "--system mdof needs ...") or the flags of
+        the options given that need them (["--spans", "--pier-height"]: "--spans,
+        --pier-height need ..."), for commands without --system (simulate KIND, animate).
+    **given
+        The options needed, by keyword.
+    """
     missing = [k for k, v in given.items() if v is None]
     if missing:
         flags = ", ".join("--" + k.replace("_", "-") for k in missing)
-        raise ValueError(f"--system {kind} needs {flags} (keywords: {', '.join(missing)})")
+        subject = f"--system {by}" if isinstance(by, str) else ", ".join(by)
+        verb = "need" if isinstance(by, list) and len(by) > 1 else "needs"
+        raise ValueError(f"{subject} {verb} {flags} (keywords: {', '.join(missing)})")
 
 
 def check_blocks(blocks: int | None) -> int | None:
@@ -433,7 +446,7 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     friction : float, optional
         mdof: Coulomb friction coefficient of every joint [-] (None: no sliding, the chain
         model bit for bit); ``ap_min`` is then the friction-aware collapse acceleration
-        (docs/theory.md Eq. (10.4); one block: min(mu, B/H)·g).
+        (non-associative, docs/theory.md Eqs. (10.4)–(10.9); one block: min(mu, B/H)·g).
     spans, pier_height, pier_width, pier_blocks, abutments : optional
         mdof: the arch on piers (``spans`` 1) or a bridge of ``spans`` equal arches; pier
         height and width [m], blocks per pier, abutments instead of end piers
@@ -498,7 +511,8 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
         if width is not None or height is not None:
             if p is not None or alpha is not None:
                 raise ValueError("give either width/height or p/alpha, not both")
-            _need(kind, width=width, height=height)
+            _need([f for f, v in (("--width", width), ("--height", height))
+                   if v is not None], width=width, height=height)
             blk = RigidBlock.from_dimensions(width, height, g, restitution)
             p, alpha = blk.p, blk.alpha
         _need(kind, alpha=alpha)
@@ -604,10 +618,12 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
                                  f"{show(wall)}")
             rows, cols = int(rows), int(cols)
             return builders.wall(rows, cols, bw, bh, mu=mu, g=g)
-        _need("mdof", bay=bay, lintel=lintel)
+        _need(["--colonnade"], bay=bay, lintel=lintel)
         return builders.colonnade(colonnade, bw, bh, bay, lintel, mu=mu, g=g)
     if arch is not None and any(v is not None for v in piers.values()):
-        _need("mdof", pier_height=pier_height, pier_width=pier_width)
+        by = [("--end-piers" if k == "abutments" and v is False else
+               "--" + k.replace("_", "-")) for k, v in piers.items() if v is not None]
+        _need(by, pier_height=pier_height, pier_width=pier_width)
         return builders.bridge(arch, blocks, spans=1 if spans is None else spans,
                                pier_height=pier_height, pier_width=pier_width,
                                pier_blocks=pier_blocks, abutments=abutments, mu=mu, g=g)

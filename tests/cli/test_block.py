@@ -115,6 +115,12 @@ def test_single_column_record_with_dt_is_the_record(tmp_path):
           "--period", "1", "--ratio", "2"], "p must"),
         (["simulate", "block", "--width", "0", "--height", "1", "--signal", "step",
           "--period", "1", "--ratio", "2"], "width B"),
+        # simulate block has no --system: the line names the option given (it said
+        # "--system block needs --height")
+        (["simulate", "block", "--width", "0.4", "--signal", "step", "--period", "1",
+          "--ratio", "2"], "error: --width needs --height (keywords: height)"),
+        (["simulate", "block", "--height", "2", "--signal", "step", "--period", "1",
+          "--ratio", "2"], "error: --height needs --width (keywords: width)"),
         (["simulate", "block", "--alpha", "0.1", "--p", "1", "--signal", "step",
           "--period", "-1", "--ratio", "2"], "period T"),
     ],

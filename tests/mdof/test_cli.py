@@ -108,6 +108,25 @@ def test_bad_input_exit_2(args, msg):
     assert msg in res.stderr and len(res.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.parametrize("command", [["simulate", "mdof"], ["animate"]])
+@pytest.mark.parametrize("args, msg", [
+    (["--colonnade", "2", "--block", "0.3,2", "--bay", "1"],
+     "error: --colonnade needs --lintel (keywords: lintel)"),
+    ([*ARCH, "--blocks", "8", "--spans", "2", "--pier-height", "3"],
+     "error: --spans, --pier-height need --pier-width (keywords: pier_width)"),
+    ([*ARCH, "--blocks", "8", "--pier-width", "1"],
+     "error: --pier-width needs --pier-height (keywords: pier_height)"),
+])
+def test_a_missing_structure_option_is_named_without_system(command, args, msg, tmp_path):
+    """`simulate mdof` and `animate` have no --system: the line names the structure's
+    option that needs the missing one (it said '--system mdof needs --lintel')."""
+    out = ["--out", str(tmp_path / "x.gif")] if command == ["animate"] else []
+    res = runner.invoke(app, [*command, *args, "--signal", "sine", "--period", "1",
+                              "--ratio", "1", *out])
+    assert res.exit_code == 2, res.output
+    assert res.stderr.strip() == msg and "--system" not in res.stderr
+
+
 def test_bad_oas_mdof_input():
     res = runner.invoke(app, ["oas", "--system", "mdof", "--shape", "catenary",
                               "--rise-over-span", "0.3", "--thickness-over-span", "0.025",

@@ -191,3 +191,39 @@ def sweep_options(opts: dict) -> dict:
     return {"workers": opts["workers"], "scheduler": opts["scheduler"],
             "dask_workers": opts["dask_workers"], "store_dir": opts["store"],
             "no_store": opts["no_store"]}
+
+
+def given(opts: dict, *groups: Group) -> list[str]:
+    """The options of ``groups`` given on the command line, by their flags: those whose
+    value differs from the option's default (an empty list is not given; a hidden argument
+    is named by its values).
+
+    Parameters
+    ----------
+    opts : dict
+        A command's ``**opts``.
+    *groups : Group
+        The groups whose options are looked at.
+
+    Returns
+    -------
+    list of str
+        The flags (``--friction``, ``--end-piers``) in the groups' order.
+    """
+    out = []
+    for group in groups:
+        for name, _, opt in group:
+            v = opts[name]
+            if isinstance(v, (list, tuple)):
+                if not v:
+                    continue
+            elif v is None or getattr(v, "value", v) == opt.default:
+                continue
+            if isinstance(opt, typer.models.ArgumentInfo):
+                out.append(" ".join(str(x) for x in v))
+                continue
+            decl = next((d for d in opt.param_decls or () if d.startswith("--")),
+                        "--" + name.replace("_", "-"))
+            on, _, off = decl.partition("/")
+            out.append(off if off and v is False else on)
+    return out

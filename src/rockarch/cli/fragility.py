@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import replace
 from enum import Enum
 from pathlib import Path
 
@@ -59,7 +60,8 @@ def ida_sweep_options(opts: dict, n_records: int) -> dict:
 IDA: Group = (
     ("p", float, typer.Option(None, "--p", help="Frequency parameter of the structure "
                               "[1/s] (default for mdof walls, columns, colonnades and "
-                              "assembly files: their own, at the size given).")),
+                              "assembly files: their own, at the size given; another p "
+                              "scales them, size ∝ 1/p², as the output says).")),
     ("records", list[Path], typer.Option(None, "--records", help="Folders of records "
                                          "(.AT2, .ASC, K-NET, .V2c, two-column, or "
                                          "single-column with --dt) or record files; several "
@@ -104,6 +106,13 @@ def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
     if not opts["records"]:
         raise ValueError("give the records: --records DIR (or files)")
     sysobj = system_of(opts)
+    name, p_structure = sysobj.name, None
+    if opts["system"].value == "mdof" and opts["p"] is not None:
+        # an assembly is built in metres (an arch of f/l, d/l on a span of 1): at another p
+        # it is scaled, size ∝ 1/p² (docs/theory.md Eq. (10.5)), and the label says so
+        p_structure = float(sysobj.p_ref)
+        name = (f"{name} scaled ×{(p_structure / opts['p']) ** 2:.4g} (size ∝ 1/p², as "
+                f"given p = {p_structure:.4g} 1/s)")
     if opts["p"] is None:
         # blocks (of alpha alone) and arches (of f/l, d/l) have no size; walls, columns,
         # colonnades and assembly files are given in metres and have their own p
@@ -123,8 +132,8 @@ def run_ida(opts: dict, im: str, period: float | None, *, progress: bool = True
                      ratio=ratios, tol=tol,
                      progress=progress and sys.stderr.isatty(), executor=executor,
                      store=chunk_store, island_step=opts["island_step"],
-                     search_step=opts["search_step"], log=cc.stage_echo())
-    return res, motions
+                     search_step=opts["search_step"], log=cc.stage_echo(), name=name)
+    return replace(res, p_structure=p_structure), motions
 
 
 def im_range_si(text: str | None, im: str) -> tuple[float, float] | None:
@@ -221,6 +230,8 @@ def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
     obj = {"system": res.system, "p": res.p, "ap_min": res.ap_min,
            "n_records": len(res.records), "n_censored": int(res.censored.sum()),
            "search_step": res.search_step, "ims": rows, "points": points}
+    if res.p_structure is not None:
+        obj |= {"scale": res.scale, "p_structure": res.p_structure}
     if out is not None:
         cc.write_json(out, obj)
     if json_out:

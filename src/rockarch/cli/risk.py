@@ -11,7 +11,7 @@ import typer
 from rockarch.cli import _common as cc
 from rockarch.cli._app import app
 from rockarch.cli._common import guarded
-from rockarch.cli._groups import SWEEP, SYSTEM, Group, options
+from rockarch.cli._groups import SWEEP, SYSTEM, Group, given, options
 from rockarch.cli.fragility import IDA, run_ida
 from rockarch.output import check_outputs
 from rockarch.risk import fragility as fr
@@ -77,11 +77,14 @@ def risk(
     years, extrapolate = check_years(opts["years"]), opts["extrapolate"]
     check_outputs((plot, "--plot", "png"))
     curve = hazard_of(hazard, opts["site_row"])
-    inline = opts["p"] is not None or bool(opts["records"])
-    if (fragility is None) == (not inline):
-        raise ValueError("give the fragility: either --fragility FRAG.json (rockarch "
-                         "fragility --json) or its options inline (--system ... --p P "
-                         "--records DIR), not both")
+    ask = ("give the fragility: either --fragility FRAG.json (rockarch fragility --json) "
+           "or its options inline (--system ... --p P --records DIR), not both")
+    if fragility is None and opts["p"] is None and not opts["records"]:
+        raise ValueError(ask)
+    inline = given(opts, SYSTEM, IDA, SWEEP)
+    if fragility is not None and inline:
+        # a fragility file holds its structure and scan: no option of either applies
+        raise ValueError(f"{ask} ({', '.join(inline)} given with --fragility)")
     if fragility is not None:
         frag = hz.read_fragility(fragility)
         described = f"{fragility}"

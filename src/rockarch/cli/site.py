@@ -237,7 +237,10 @@ def design(
         if save_site is not None:
             site_mod.save(site_ds, save_site)
     else:
-        site_ds = site_mod.check_block_site(site_mod.load(site_file), site_file)
+        site_ds = site_mod.check_block_site(
+            site_mod.load(site_file), site_file,
+            structure=f"{shape.value} arch l = {span:g} m, f = {rise:g} m, d = "
+                      f"{thickness:g} m")
     arch = make_arch(shape.value, positive("--span", span), positive("--rise", rise),
                      positive("--thickness", thickness))
     repl = replacement(arch, g=g, axis=replacement_axis, mass=replacement_mass)
@@ -426,10 +429,15 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
     kw = {"curve": opt["curve"],
           "percentile": 50.0 if opt["percentile"] is None else opt["percentile"],
           "g": opt["g"], "pga": opt["pga"], "probability": _conditional(opt)}
-    suite = None
+    suite, caveats = None, []
     if opt["site_file"] is not None:
-        res = design_system(sysobj, site=site_mod.load(opt["site_file"]), curve=kw["curve"],
-                            g=kw["g"])
+        ds = site_mod.check_block_site(site_mod.load(opt["site_file"]), opt["site_file"],
+                                       structure=sysobj.name)
+        res = design_system(sysobj, site=ds, curve=kw["curve"], g=kw["g"])
+        # the equivalent SDOF reads the site file's first collapses, as the arch design
+        caveats = [site_file_note("structure", "docs/sites.md")]
+        for c in caveats:
+            echo_err(f"note: {c}")
     else:
         if not 0 <= opt["bootstrap"] <= fr.MAX_BOOTSTRAP:
             raise ValueError(f"--bootstrap must lie in [0, {fr.MAX_BOOTSTRAP}], got "
@@ -457,9 +465,11 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
                          probability=opt["probability"], extrapolate=opt["extrapolate"])
     if opt["report"] is not None:
         from rockarch.output.report import write_system_report
-        write_system_report(res, opt["report"], command=_command_line(opt), suite=suite)
+        write_system_report(res, opt["report"], command=_command_line(opt), suite=suite,
+                            caveats=caveats)
     if json_out:
-        print_json(res.to_dict() | ({} if risk is None else {"risk": risk.to_dict()}))
+        print_json(res.to_dict() | ({"caveats": caveats} if caveats else {})
+                   | ({} if risk is None else {"risk": risk.to_dict()}))
         return
     _print_system_design(res)
     if risk is not None:
@@ -489,15 +499,34 @@ def _command_line(opt: dict) -> str:
     return " ".join(shlex.quote(w) for w in words)
 
 
+def site_file_note(of: str, doc: str) -> str:
+    """The caveat of a design read on a site file: its islands are not searched.
+
+    Parameters
+    ----------
+    of : str
+        What the records' collapses are searched for with --records ("arch",
+        "structure").
+    doc : str
+        Where that search is described.
+
+    Returns
+    -------
+    str
+        One line, without the "note: " prefix.
+    """
+    return ("a site file holds each record's first collapse on its ratio grid; collapse "
+            "islands narrower than the grid's step are not searched (with --records they "
+            f"are, at the {of}'s p: {doc})")
+
+
 def _design_caveats(res, ida, curve: str, site_ds) -> list[str]:
     """What an arch's design did not search or bound, each said once on stderr (and given
     to the report): a site file's islands; a fitted curve (normalised, simplified) read
     above records' first collapses (from the IDA, islands searched, or the site file's)."""
     notes, warns = [], []
     if ida is None:
-        notes.append("a site file holds each record's first collapse on its ratio grid; "
-                     "collapse islands narrower than the grid's step are not searched (with "
-                     "--records they are, at the arch's p: docs/design.md)")
+        notes.append(site_file_note("arch", "docs/design.md"))
         first = site_mod.records_at(site_ds, res.chosen.p)
     else:
         first = ida.ratio_collapse

@@ -153,9 +153,15 @@ SYSTEM_ASSUMPTIONS = {
         "scaled up until it collapses (incremental dynamic analysis, docs/theory.md Eq. "
         "(11.30)); the safe PGA is the lowest collapse PGA over the records (envelope) or "
         "their chosen percentile, Eq. (11.34).",
-        "ap,min (the unit of the scan) is the limit-analysis value with associative Coulomb "
-        "friction, Eq. (10.4); where a contact must slide while it opens it can be too high "
-        "(docs/theory.md §10); the time histories do not depend on it.",
+        "ap,min (the unit of the scan) is the structure's limit value (a block: g·tan "
+        "alpha; a four-hinge mechanism: docs/theory.md §5); for an MDOF assembly it is the "
+        "limit analysis with non-associative Coulomb friction, docs/theory.md Eqs. "
+        "(10.4)–(10.9): from the associative LP (10.4), an iteration of LPs whose shear "
+        "capacities are mu times the previous normal forces (10.6)–(10.8), so that a joint "
+        "slides without opening and an open joint carries no shear, and a search of rigid "
+        "clusters rocking about one corner (10.9), the smaller of the two. These are "
+        "solutions of the non-associative problem, not bounds (a lower mechanism of several "
+        "clusters may exist, docs/theory.md §10); the time histories do not depend on it.",
         "Collapse is declared once the structure, frozen at rest, would move away under "
         "gravity alone (past its neutral configuration, docs/theory.md §6): conservative.",
         "Records that do not collapse the structure up to the top of the scan are censored; "
@@ -173,11 +179,13 @@ SYSTEM_ASSUMPTIONS = {
 }
 
 
-def system_report_html(result: SystemDesign, *, command: str, suite=None) -> str:
+def system_report_html(result: SystemDesign, *, command: str, suite=None,
+                       caveats: Sequence[str] = ()) -> str:
     """The design report of any structure (:func:`rockarch.design.design_system`) as one
     HTML page: the safe PGA, the structure's p and ap,min, the records' collapse points
     and fragility (``suite``: their response spectra and file hashes), the assumptions and
-    the command that reruns it."""
+    the command that reruns it; ``caveats`` (what the check did not search or bound)
+    follow the result, as in :func:`report_html`."""
     from rockarch.output.fragility_plots import fragility_html
 
     r, g = result, result.g
@@ -194,7 +202,11 @@ def system_report_html(result: SystemDesign, *, command: str, suite=None) -> str
 <div class="result">Largest safe peak ground acceleration:
 <b>{r.pga_safe:.3f} m/s² = {r.pga_safe / g:.3f} g</b><br>
 ap/ap,min = {r.ratio:.4f}{lower} ({escape(curve)}) at p = {r.p:.4f} 1/s;
-ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.</div>\n"""
+ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.
+{"" if not caveats else
+ "Below this PGA the structure may move; that it does not collapse holds within these "
+ "caveats:"}
+{"".join(f'<p class="caveat">{escape(c)}</p>' for c in caveats)}</div>\n"""
     frag = r.fragility
     if frag is not None:
         ida = frag.ida
@@ -217,6 +229,8 @@ ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.</div>\n"""
     return page("rockarch design check", body)
 
 
-def write_system_report(result: SystemDesign, path, *, command: str, suite=None) -> Path:
+def write_system_report(result: SystemDesign, path, *, command: str, suite=None,
+                        caveats: Sequence[str] = ()) -> Path:
     """Write :func:`system_report_html` atomically."""
-    return write_text(path, system_report_html(result, command=command, suite=suite))
+    return write_text(path, system_report_html(result, command=command, suite=suite,
+                                               caveats=caveats))

@@ -120,6 +120,8 @@ class IDAResult:
         :class:`RecordScan` (``overturned`` is True where a value was not run).
     evaluated : (record, ratio) bool, the values run (None: every one).
     search_step : step of the search below the grid's first collapse (0: none).
+    p_structure : the p of the structure as given in metres where it was scaled to ``p``
+        (size ∝ 1/p², :attr:`scale`); None: analysed as given, or it has no size.
     """
 
     system: str
@@ -137,6 +139,13 @@ class IDAResult:
     island_step: int = 1
     evaluated: np.ndarray | None = None
     search_step: float = 0.0
+    p_structure: float | None = None
+
+    @property
+    def scale(self) -> float | None:
+        """The analysed structure's size over its size as given, (p_structure/p)² (None:
+        not scaled)."""
+        return None if self.p_structure is None else (self.p_structure / self.p) ** 2
 
     @property
     def censored(self) -> np.ndarray:
@@ -183,7 +192,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         im: str = "pga", period: float | None = None, ratio=None,
         tol: float | None = None, progress: bool = False, executor=None, store=None,
         island_step: int = 1, search_step: float | None = None,
-        log: Callable[[str], None] | None = None) -> IDAResult:
+        log: Callable[[str], None] | None = None, name: str | None = None) -> IDAResult:
     """Incremental dynamic analysis of ``system`` at frequency parameter ``p``.
 
     Parameters
@@ -211,8 +220,10 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
         0: no search.
     log : called with a line per stage (the structure and the scan, when the IDA starts;
         each record, when it is done), e.g. ``print`` where no progress bar is shown.
+    name : the structure's name in the log and the result (default ``system.name``).
     """
     motions, names = as_motions(motions, names, "motions")
+    name = system.name if name is None else name
     if not motions:
         raise ValueError("an IDA needs at least one record")
     p = float(p)
@@ -233,7 +244,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
                    else check_search_step(search_step))
     scan = RecordScan(system, p, tol, check_island_step(island_step), search_step)
     if log is not None:
-        log(f"structure {system.name}: p = {p:.4g} 1/s, ap,min = "
+        log(f"structure {name}: p = {p:.4g} 1/s, ap,min = "
             f"{float(system.ap_min):.4g} m/s²")
         log(f"IDA: {len(motions)} record(s), {scan_text(ratio, tol, search_step)}")
     task_ratio = np.append(ratio, np.nan)
@@ -259,7 +270,7 @@ def ida(system, motions: Sequence[GroundMotion], p: float, *, names=None,
             executor.close()
     for k, (o, r) in zip(order, res, strict=True):
         over[k], evaluated[k], collapse[k] = o[:-1], ~np.isnan(r[:-1]), r[-1]
-    return IDAResult(system=system.name, p=p, ap_min=float(system.ap_min), im=im,
+    return IDAResult(system=name, p=p, ap_min=float(system.ap_min), im=im,
                      records=names, ratio=ratio, overturned=over, ratio_collapse=collapse,
                      im_scale=scale, resurrections=count_resurrections(over, ratio, collapse),
                      tol=tol, period=period, island_step=scan.island_step,
@@ -492,6 +503,8 @@ class Fragility:
         if r.island_step > 1:
             out["island_step"] = r.island_step
         out["search_step"] = r.search_step
+        if r.p_structure is not None:
+            out["scale"], out["p_structure"] = r.scale, r.p_structure
         out["scan"] = {"ratio_min": float(r.ratio[0]), "ratio_max": float(r.ratio[-1]),
                        "values": int(r.ratio.size), "tol": r.tol}
         return out

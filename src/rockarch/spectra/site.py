@@ -195,15 +195,39 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     return spectra.note_units(ds)
 
 
-def check_block_site(ds: xr.Dataset, path=None) -> xr.Dataset:
+def check_block_site(ds: xr.Dataset, path=None, *, structure: str | None = None
+                     ) -> xr.Dataset:
     """The site OAS unchanged if it is a slender block's (what the paper's design method
-    reads, docs/theory.md Eq. (7.2)); a ValueError naming its structure otherwise."""
+    and the equivalent SDOF read, docs/theory.md Eqs. (7.2), (11.35)).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A site OAS (:func:`load`).
+    path : path, optional
+        Its file, named in the error.
+    structure : str, optional
+        The structure being designed (e.g. ``system.name``), named in the error apart from
+        the file's.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds`` itself.
+
+    Raises
+    ------
+    ValueError
+        If ``ds`` is the site OAS of another structure (``site-oas --system``): one line
+        naming it and the structure designed, and asking for a block's site OAS or the
+        records.
+    """
     if "system" in ds.attrs:
         where = f"{path}: " if path is not None else ""
+        of = "the design check" if structure is None else f"the design of the {structure}"
         raise ValueError(f"{where}this is the site OAS of {ds.attrs['system']}, not of a "
-                         "slender block: the design check reads a block's site OAS "
-                         "(rockarch site-oas without --system); for this structure give "
-                         "--records")
+                         f"slender block: {of} reads a block's site OAS (rockarch site-oas "
+                         "without --system): give one, or --records")
     return ds
 
 
