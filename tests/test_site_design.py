@@ -310,3 +310,11 @@ def test_design_records_units(clips, tmp_path):
     bad = runner.invoke(app, [*base, str(tmp_path / "cm")])
     assert bad.exit_code == 0 and "not plausible: wrong units?" in bad.stderr
     assert "warning" not in cm.stderr
+
+
+def test_report_command_writes_flags_as_flags():
+    # the report's rerun command printed "--no-store True", which the command line refuses
+    from rockarch.cli.site import _command_line
+
+    cmd = _command_line({"no_store": True, "system": "mdof", "column": "0.4,1.0"})
+    assert "--no-store" in cmd.split() and "True" not in cmd.split()

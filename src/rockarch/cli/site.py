@@ -483,16 +483,15 @@ def _command_line(opt: dict) -> str:
     report's way to rerun it."""
     import shlex
 
-    import click
-
     words = ["rockarch", "design"]
     command = typer.main.get_command(app).get_command(None, "design")
     for prm in command.params:
         v = opt.get(prm.name)
         if v is None or v == prm.default or prm.name in ("report", "json_out") or v == []:
             continue
-        if isinstance(prm, click.Option) and prm.is_flag:
-            words.append(prm.opts[0] if v else prm.secondary_opts[0])
+        if getattr(prm, "is_flag", False):  # typer's options need not be click's class
+            if v or prm.secondary_opts:
+                words.append(prm.opts[0] if v else prm.secondary_opts[0])
             continue
         for item in v if isinstance(v, (list, tuple)) else [v]:
             words += [prm.opts[0], str(getattr(item, "value", item))]
