@@ -76,6 +76,21 @@ def test_simulate_mdof_column_and_record(tmp_path):
     assert isinstance(out["overturned"], bool)
 
 
+def test_plot_of_a_safe_run_has_no_empty_legend(tmp_path):
+    # an MDOF response counts impacts without their times and this run does not overturn:
+    # nothing is labelled, so no legend (matplotlib warned "No artists with labels ...")
+    import warnings
+
+    png = tmp_path / "h.png"
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")  # a warning shown earlier in the session shows again
+        res = runner.invoke(app, ["simulate", "mdof", "--column", "0.4,1", "--signal", "sine",
+                                  "--period", "1", "--ratio", "1.2", "--plot", str(png)])
+    assert res.exit_code == 0, res.output
+    assert "safe:" in res.stdout and png.read_bytes()[:4] == b"\x89PNG"
+    assert "warning" not in res.stderr and "legend" not in res.stderr, res.stderr
+
+
 def test_oas_mdof_contract():
     out = _json(["oas", "--system", "mdof", "--shape", "catenary", "--rise-over-span", "0.3",
                  "--thickness-over-span", "0.025", "--blocks", "12", "--signal", "sine",
