@@ -226,3 +226,25 @@ def test_risk_plot_x_axis_is_readable(beta):
     assert all(float(t) > 0 for t in texts), texts
     boxes = sorted((t.get_window_extent(renderer) for t in shown), key=lambda b: b.x0)
     assert all(a.x1 < b.x0 for a, b in zip(boxes[:-1], boxes[1:], strict=True)), texts
+
+
+def test_text_and_figure_print_m_per_s_squared(frag_json, tmp_path):
+    """A curve in 'PGA [m/s2]': the text and the figure print m/s², the JSON keeps what the
+    file says."""
+    f = tmp_path / "h.csv"
+    f.write_text("PGA [m/s2],rate [1/yr]\n0.2,0.06\n0.5,0.02\n1,0.005\n2,0.001\n5,1e-4\n"
+                 "10,1e-5\n20,1e-6\n")
+    res = runner.invoke(app, ["risk", "--hazard", str(f), "--fragility", str(frag_json)])
+    assert res.exit_code == 0, res.stderr
+    assert "m/s2" not in res.stdout and "deaggregation by PGA [m/s²]" in res.stdout
+    assert "frag.json: median PGA 2 m/s², beta 0.350" in res.stdout
+    assert _json(["risk", "--hazard", str(f), "--fragility", str(frag_json),
+                  "--json"])["hazard"]["units"] == "m/s2"
+    from rockarch.output.risk_plots import plot_risk
+
+    curve = hz.read_hazard(f)
+    frag = hz.read_fragility(frag_json)
+    fig = plot_risk(curve, frag, hz.collapse_rate(curve, frag))
+    texts = [fig.axes[-1].get_xlabel()] + [t.get_text() for ax in fig.axes
+                                           for t in ax.get_legend().get_texts()]
+    assert texts[0] == "PGA [m/s²]" and not any("m/s2" in t for t in texts), texts

@@ -7,6 +7,7 @@ import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from rockarch.output.figures import subplots
+from rockarch.output.tables import unit_label
 from rockarch.risk.hazard import FragilityCurve, HazardCurve, RiskResult
 
 #: Standard normal quantile of 0.999: the fragility is drawn from P = 0.001 to 0.999.
@@ -68,7 +69,7 @@ def plot_risk(hazard: HazardCurve, frag: FragilityCurve, res: RiskResult, *,
     P(collapse | x); (c) their product, the deaggregation density P(x)·|dH/d ln x|
     [1/yr], whose area is λ_c (docs/theory.md Eqs. (11.36), (11.41)). Returns the
     figure."""
-    f, units = hazard.factor, hazard.units
+    f, units = hazard.factor, unit_label(hazard.units)
     x = res.im_grid
     lo, hi = im_range(hazard, frag, res)
     xs = np.geomspace(lo, hi, 400)
