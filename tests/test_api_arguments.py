@@ -157,6 +157,36 @@ def test_messages_show_plain_numbers():
     assert re.search(r"got -1\b", str(info.value)), info.value
 
 
+def test_systems_repr_is_one_line():
+    # print(ra.system("mdof", wall=[6, 5], block=[0.4, 0.2])) printed every array of the
+    # assembly (hundreds of lines); the systems and Assembly now print one line each
+    import rockarch as ra
+
+    wall = ra.system("mdof", wall=[6, 5], block=[0.4, 0.2])
+    a = wall.assembly
+    cases = [(wall, [f"Assembly({a.name!r}, wall: {a.n_blocks} blocks, {a.n_joints} joints",
+                    f"ap_min {a.ap_min:.4g} m/s²", f"p {a.p_ref:.4g} 1/s",
+                    f"delta {a.delta_ref:.4g} rad"]),
+             (a, [f"Assembly({a.name!r}, wall:"]),
+             (ra.system("mdof", column=[[0.4, 1.0]], friction=0.5),
+              ["1 block, 1 joint", "friction 0.5"]),
+             (ra.system("block", alpha=0.1, p=2.0),
+              ["BlockSystem('block', alpha 0.1 rad, p 2 1/s, ap_min 0.9843 m/s²"]),
+             (ra.system("block", alpha=0.1), ["p varies"]),
+             (ra.system("sdof", p=2.0, delta=0.3, ap_min=2.0),
+              ["generic: p 2 1/s, delta 0.3 rad, ap_min 2 m/s²"]),
+             (ra.system("frame", alpha=0.1, p=2.0, mass_ratio=1.0),
+              ["frame alpha=0.1", "frame:"]),
+             (ra.system("fourhinge", shape="circular", span=10, rise=2.89, thickness=0.35),
+              ["MechanismSystem(SDOFMechanism('four-hinge circular arch", "fourhinge: p "])]
+    for obj, parts in cases:
+        text = repr(obj)
+        assert "\n" not in text and len(text) < 300, text
+        assert text.startswith(type(obj).__name__ + "(") and text == str(obj)
+        for part in parts:
+            assert part in text, (part, text)
+
+
 def test_responses_repr_is_one_line_verdict():
     # a BlockResponse's repr printed every sample of theta and theta_dot (a screen of numbers
     # in a notebook); every Response kind now prints its verdict in one line

@@ -2,6 +2,7 @@
 collapse points equal to `rockarch oas` boundaries × ap,min; bad input exits 2."""
 
 import json
+import re
 import shutil
 
 import pytest
@@ -223,6 +224,17 @@ def test_im_all_reports_the_dispersion_of_every_im_on_one_ida(folder):
     text = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
                                str(folder), "--no-store", "--im", "all", "--bootstrap", "0"])
     assert "Sa(T = 3.14 s)" in text.stdout and "lowest beta:" in text.stdout
+    # printed units are m/s² as every other output (the JSON keeps "units": "m/s2")
+    assert "m/s²" in text.stdout and "m/s2" not in text.stdout, text.stdout
+    assert rows["pga"]["units"] == "m/s2"
+
+
+def test_text_prints_units_as_m_per_s_squared(folder):
+    res = runner.invoke(app, ["fragility", "--alpha", "0.1", "--p", "2", "--records",
+                              str(folder), "--no-store", "--bootstrap", "0"])
+    assert res.exit_code == 0, res.output
+    assert "(IM = pga [m/s²])" in res.stdout and "m/s2" not in res.stdout, res.stdout
+    assert re.search(r"^lognormal .*: median [0-9.]+ m/s², beta", res.stdout, re.M), res.stdout
 
 
 def test_mdof_structure_of_real_size_needs_no_p(folder):

@@ -217,3 +217,56 @@ def test_design_arch_smallest_thickness(tmp_path):
     assert trials[d] <= 0.05
     thinner = [t for t in trials if t < d]
     assert thinner and trials[max(thinner)] > 0.05 and max(thinner) >= 0.99 * d - 1e-12
+
+
+@pytest.mark.parametrize("beta", [0.3, 0.75, 0.9, 1.5])
+def test_risk_plot_x_axis_is_readable(beta):
+    """The IM axis spans where the integrand matters (not 100-1000 g), and its tick labels
+    are distinct numbers that do not overlap (they read "0.00 0.00 ... 10.0020.00")."""
+    from rockarch.output.risk_plots import im_range, plot_risk
+
+    curve = hz.read_hazard(OPENQUAKE)
+    frag = hz.fragility_curve("pga", 0.222 * 9.80665, beta)
+    res = hz.collapse_rate(curve, frag, extrapolate=True)  # beta 1.5 needs it
+    fig = plot_risk(curve, frag, res)
+    ax = fig.axes[-1]
+    lo, hi = ax.get_xlim()
+    assert (lo, hi) == pytest.approx(tuple(v / curve.factor for v in im_range(curve, frag,
+                                                                               res)))
+    # the fragility's 0.1-99.9 % range (and the curve's 0.02 ... 2 g) fit in the axis
+    z = 3.09 * beta
+    assert lo <= min(0.02, 0.222 * math.exp(-z)) * 1.001
+    assert hi >= max(2.0, 0.222 * math.exp(z)) / 1.001
+    assert hi <= 10 * max(2.0, 0.222 * math.exp(z))
+    assert hi < 100 if beta <= 0.9 else hi < 1000
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    shown = [t for t in ax.get_xticklabels() if t.get_text() and lo <= t.get_position()[0]
+             <= hi]
+    texts = [t.get_text() for t in shown]
+    assert 3 <= len(texts) <= 12 and len(set(texts)) == len(texts), texts
+    assert all(float(t) > 0 for t in texts), texts
+    boxes = sorted((t.get_window_extent(renderer) for t in shown), key=lambda b: b.x0)
+    assert all(a.x1 < b.x0 for a, b in zip(boxes[:-1], boxes[1:], strict=True)), texts
+
+
+def test_text_and_figure_print_m_per_s_squared(frag_json, tmp_path):
+    """A curve in 'PGA [m/s2]': the text and the figure print m/s², the JSON keeps what the
+    file says."""
+    f = tmp_path / "h.csv"
+    f.write_text("PGA [m/s2],rate [1/yr]\n0.2,0.06\n0.5,0.02\n1,0.005\n2,0.001\n5,1e-4\n"
+                 "10,1e-5\n20,1e-6\n")
+    res = runner.invoke(app, ["risk", "--hazard", str(f), "--fragility", str(frag_json)])
+    assert res.exit_code == 0, res.stderr
+    assert "m/s2" not in res.stdout and "deaggregation by PGA [m/s²]" in res.stdout
+    assert "frag.json: median PGA 2 m/s², beta 0.350" in res.stdout
+    assert _json(["risk", "--hazard", str(f), "--fragility", str(frag_json),
+                  "--json"])["hazard"]["units"] == "m/s2"
+    from rockarch.output.risk_plots import plot_risk
+
+    curve = hz.read_hazard(f)
+    frag = hz.read_fragility(frag_json)
+    fig = plot_risk(curve, frag, hz.collapse_rate(curve, frag))
+    texts = [fig.axes[-1].get_xlabel()] + [t.get_text() for ax in fig.axes
+                                           for t in ax.get_legend().get_texts()]
+    assert texts[0] == "PGA [m/s²]" and not any("m/s2" in t for t in texts), texts

@@ -144,6 +144,13 @@ class BlockSystem(_Sweepable):
     name: str = "block"
     p: float | None = None
 
+    def __repr__(self) -> str:
+        """One line: the name, alpha, p (or that an OAS varies it) and ap_min."""
+        p = "p varies" if self.p is None else f"p {self.p:.4g} 1/s"
+        r = "" if self.restitution is None else f", restitution {self.restitution:.4g}"
+        return (f"BlockSystem({self.name!r}, alpha {self.alpha:.4g} rad, {p}, "
+                f"ap_min {self.ap_min:.4g} m/s²{r})")
+
     def __post_init__(self) -> None:
         RigidBlock(1.0 if self.p is None else self.p, self.alpha, self.g,
                    self.restitution)  # validate
@@ -194,6 +201,10 @@ class MechanismSystem(_Scaled):
     h_factor: float = SDOF_H_FACTOR
     eps_rest: float = EPS_REST
 
+    def __repr__(self) -> str:
+        """One line: the mechanism's (name, kind, p, delta, ap_min), not its tables."""
+        return f"MechanismSystem({self.mechanism!r})"
+
     @property
     def name(self) -> str:
         return self.mechanism.name
@@ -237,6 +248,14 @@ class MDOFSystem(_Scaled):
     t_free: float = T_FREE
     h_factor: float = MDOF_H_FACTOR
     gap_tol: float = GAP_TOL
+
+    def __repr__(self) -> str:
+        """One line: the assembly's (name, kind, block and joint counts, ap_min, p, delta),
+        and the axes of the map where another structure's are put on it."""
+        axes = "".join(f", {k} {v:.4g}{u}" for k, v, u in
+                       (("ap_min", self.ap_min_override, " m/s²"),
+                        ("p", self.p_override, " 1/s")) if v is not None)
+        return f"MDOFSystem({self.assembly!r}{axes and ', axes:' + axes[1:]})"
 
     def __post_init__(self) -> None:
         mdof.check_settings(self.t_free, self.h_factor, self.gap_tol)

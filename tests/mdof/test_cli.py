@@ -76,6 +76,38 @@ def test_simulate_mdof_column_and_record(tmp_path):
     assert isinstance(out["overturned"], bool)
 
 
+def test_plot_of_a_safe_run_has_no_empty_legend(tmp_path):
+    # an MDOF response counts impacts without their times and this run does not overturn:
+    # nothing is labelled, so no legend (matplotlib warned "No artists with labels ...")
+    import warnings
+
+    png = tmp_path / "h.png"
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")  # a warning shown earlier in the session shows again
+        res = runner.invoke(app, ["simulate", "mdof", "--column", "0.4,1", "--signal", "sine",
+                                  "--period", "1", "--ratio", "1.2", "--plot", str(png)])
+    assert res.exit_code == 0, res.output
+    assert "safe:" in res.stdout and png.read_bytes()[:4] == b"\x89PNG"
+    assert "warning" not in res.stderr and "legend" not in res.stderr, res.stderr
+
+
+def test_ramp_json_gives_the_ramps_end(monkeypatch):
+    # a direction that did not move is null in ramp_onsets: ramp_end says up to what
+    # ground acceleration it stood (the text's "+x stands up to 11.57 m/s²"); the onsets
+    # are those of the 4 x 3 wall with friction 2 (docs/assemblies.md), without its ~10 s
+    from rockarch.mdof import ramp
+
+    onset = ramp.RampOnset(ap_onset=8.628, direction=-1, onsets={1: float("inf"), -1: 8.628},
+                           rate=0.981, threshold=1e-3, end=11.57)
+    monkeypatch.setattr(ramp, "ramp_onset", lambda a, **kw: onset)
+    args = ["simulate", "mdof", "--column", "0.4,1", "--signal", "sine", "--period", "1",
+            "--ratio", "0.5", "--ramp", "--no-step-check"]
+    js = _json([*args, "--json"])
+    assert js["ramp_onsets"] == {"+x": None, "-x": 8.628} and js["ramp_end"] == 11.57
+    assert js["ap_ramp"] == 8.628 and js["ramp_direction"] == -1
+    assert "+x stands up to 11.57 m/s²" in runner.invoke(app, args).stdout
+
+
 def test_oas_mdof_contract():
     out = _json(["oas", "--system", "mdof", "--shape", "catenary", "--rise-over-span", "0.3",
                  "--thickness-over-span", "0.025", "--blocks", "12", "--signal", "sine",

@@ -18,6 +18,7 @@ from rockarch.cli._common import echo_err, guarded, read_records
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
 from rockarch.output import check_outputs
+from rockarch.output.tables import unit_label
 from rockarch.risk import fragility as fr
 from rockarch.risk.record_scan import (
     MDOF_SEARCH_STEP,
@@ -245,7 +246,8 @@ def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
     for r in rows:
         name = r["label"] if "period" not in r else f"Sa(T = {r['period']:.3g} s)"
         ci = r["ci"].get("beta")
-        typer.echo(f"{name:<24} {r['units']:>5} {r['median']:>9.4g} {r['beta']:>6.3f}"
+        typer.echo(f"{name:<24} {unit_label(r['units']):>5} {r['median']:>9.4g} "
+                   f"{r['beta']:>6.3f}"
                    + (f"  {ci[0]:.3f} … {ci[1]:.3f}" if ci else ""))
     if bootstrap and not has_ci and len(res.records) < fr.MIN_BOOTSTRAP_RECORDS:
         typer.echo(_no_band(len(res.records)))
@@ -257,7 +259,7 @@ def _all_ims(res: fr.IDAResult, motions, period, bootstrap: int, level: float,
 
 
 def _print_table(frag: fr.Fragility) -> None:
-    r, fit, unit = frag.ida, frag.fit, fr.IM_UNITS[frag.ida.im]
+    r, fit, unit = frag.ida, frag.fit, unit_label(fr.IM_UNITS[frag.ida.im])
     name = r.im if r.period is None else f"{r.im}(T = {r.period:g} s)"
     typer.echo(f"fragility of {r.system} at p = {r.p:g} 1/s over {len(r.records)} records "
                f"(IM = {name} [{unit}])")

@@ -14,6 +14,7 @@ from rockarch.cli._common import guarded
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, given, options
 from rockarch.cli.fragility import IDA, run_ida
 from rockarch.output import check_outputs
+from rockarch.output.tables import unit_label
 from rockarch.risk import fragility as fr
 from rockarch.risk import hazard as hz
 
@@ -125,7 +126,7 @@ def _hazard_dict(curve) -> dict:
 
 def print_risk(curve, frag, result, described: str) -> None:
     """The text output of ``rockarch risk`` (and ``design --hazard``)."""
-    f, units, name = curve.factor, curve.units, curve.label
+    f, units, name = curve.factor, unit_label(curve.units), curve.label
     how = ("annual rates" if curve.investigation_time is None else
            f"OpenQuake poe in {curve.investigation_time:g} years -> rates")
     typer.echo(f"hazard: {Path(curve.source).name}: {name} {curve.x[0] / f:.4g} … "

@@ -250,7 +250,12 @@ def _mdof_parameters(a) -> dict:
 
 
 def _with_ramp(a, header: str, extra: dict) -> tuple[str, dict]:
-    """The header and JSON fields of --ramp (:func:`rockarch.mdof.ramp.ramp_onset`)."""
+    """The header and JSON fields of --ramp (:func:`rockarch.mdof.ramp.ramp_onset`).
+
+    JSON: ``ap_ramp`` (the smaller onset, m/s²), ``ramp_direction`` (+1: ground to +x),
+    ``ramp_onsets`` (per direction, null: nothing moved) and ``ramp_end`` (m/s², the ramp's
+    last ground acceleration: a null onset means the structure stood up to it).
+    """
     from rockarch.mdof.ramp import ramp_onset
 
     r = ramp_onset(a)
@@ -266,7 +271,8 @@ def _with_ramp(a, header: str, extra: dict) -> tuple[str, dict]:
         line = f"ramp {r.rate / a.g:g} g/s from rest: nothing moves up to {r.end:.4g} m/s²"
     return f"{header}\n{line}", {**extra, "ap_ramp": r.ap_onset,
                                  "ramp_direction": r.direction,
-                                 "ramp_onsets": {side[k]: v for k, v in r.onsets.items()}}
+                                 "ramp_onsets": {side[k]: v for k, v in r.onsets.items()},
+                                 "ramp_end": r.end}
 
 
 @simulate_app.command("mdof")

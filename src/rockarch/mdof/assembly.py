@@ -57,6 +57,16 @@ class Assembly:
     body_b: np.ndarray | None = None
     mu: np.ndarray | None = None
 
+    def __repr__(self) -> str:
+        """One line: the name, kind, block and joint counts, ap_min, the reference p and
+        delta (and the least friction coefficient where joints slide), not the arrays the
+        attributes hold."""
+        nb_, nj = self.n_blocks, self.n_joints
+        friction = "" if self.frictionless else f", friction {float(np.min(self.mu)):.4g}"
+        return (f"Assembly({self.name!r}, {self.kind}: {nb_} block{'s' * (nb_ != 1)}, "
+                f"{nj} joint{'s' * (nj != 1)}, ap_min {self.ap_min:.4g} m/s², "
+                f"p {self.p_ref:.4g} 1/s, delta {self.delta_ref:.4g} rad{friction})")
+
     def __post_init__(self) -> None:
         nb_, nj = self.n_blocks, self.n_joints
         if self.body_a is None:

@@ -100,7 +100,8 @@ def _history(resp) -> tuple[np.ndarray, np.ndarray, float, str, str]:
         a = resp.assembly
         x = np.abs(resp.q[:, :, 2]).max(axis=1) / a.delta_ref
         return (resp.t, x, a.ap_min, r"$\max_j |\varphi_j| / \delta$ [-]",
-                f"{a.name}: {a.n_blocks} blocks; {resp.motion_name}")
+                f"{a.name}: {a.n_blocks} block{'s' if a.n_blocks != 1 else ''}; "
+                f"{resp.motion_name}")
     if hasattr(resp, "block"):
         blk = resp.block
         title = (f"block p = {blk.p:.3g} 1/s, alpha = {blk.alpha:.4g} rad, r = {blk.r:.4f}; "
@@ -164,7 +165,7 @@ def plot_response(resp, motion=None) -> Figure:
                  label=f"overturned at t = {resp.t_overturn:.3f} s")
     ax1.set_ylabel(ylabel)
     ax1.set_title(title, fontsize=9)
-    if resp.impacts or resp.overturned:
+    if ax1.get_legend_handles_labels()[0]:  # an MDOF response has impacts but no times
         ax1.legend(loc="upper right", fontsize=8)
     t_end = max(resp.t_end, t[-1])
     if motion is not None:

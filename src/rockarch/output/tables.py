@@ -6,6 +6,26 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
+#: Units as JSON files and the user write them -> as text and figures print them.
+_PRINTED_UNITS = {"m/s2": "m/s²", "m/s^2": "m/s²", "cm/s2": "cm/s²", "cm/s^2": "cm/s²",
+                  "mm/s2": "mm/s²", "mm/s^2": "mm/s²"}
+
+
+def unit_label(units: str) -> str:
+    """Units as printed in text and figures.
+
+    Parameters
+    ----------
+    units : str
+        Units as a JSON file or a hazard curve's header writes them (``"m/s2"``).
+
+    Returns
+    -------
+    str
+        The same units with a superscript square (``"m/s²"``); other units unchanged.
+    """
+    return _PRINTED_UNITS.get(units.strip(), units)
+
 
 def text_table(headers: Sequence[str], rows: Iterable[Sequence[str]],
                widths: Sequence[int], sep: str = "  ") -> list[str]:

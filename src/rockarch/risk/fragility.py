@@ -553,7 +553,7 @@ def site_ida(motions: Sequence[GroundMotion], p: float, ap_min: float, *,
     res = ida(block, motions, p, names=names, ratio=ratio, tol=tol, executor=executor,
               store=store, progress=progress)
     return replace(res, ap_min=float(ap_min), system=f"block alpha={block.alpha:g} "
-                   f"(replacement, ap,min = {ap_min:.4g} m/s2)")
+                   f"(replacement, ap,min = {ap_min:.4g} m/s²)")
 
 
 #: What to do when too few of a site's records collapse the replacement's block.

@@ -129,6 +129,13 @@ class SDOFMechanism:
     restitution: float | None = None
     info: dict = field(default_factory=dict, compare=False)
 
+    def __repr__(self) -> str:
+        """One line: the name, kind, p, delta and ap_min (not the tables of its sides)."""
+        r = "" if self.restitution is None else f", restitution {self.restitution:.4g}"
+        return (f"SDOFMechanism({self.name!r}, {self.info.get('kind', 'mechanism')}: "
+                f"p {self.p:.4g} 1/s, delta {self.delta:.4g} rad, "
+                f"ap_min {self.ap_min:.4g} m/s²{r})")
+
     def __post_init__(self) -> None:
         if self.restitution is not None:
             object.__setattr__(self, "restitution",
