@@ -636,9 +636,13 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
                 raise ValueError(f"--wall needs whole numbers of rows and columns, got "
                                  f"{show(wall)}")
             rows, cols = int(rows), int(cols)
-            return builders.wall(rows, cols, bw, bh, mu=mu, g=g)
+            a = builders.wall(rows, cols, bw, bh, mu=mu, g=g)
+            assembly_file.warn_implausible_size(a, a.name)
+            return a
         _need(["--colonnade"], bay=bay, lintel=lintel)
-        return builders.colonnade(colonnade, bw, bh, bay, lintel, mu=mu, g=g)
+        a = builders.colonnade(colonnade, bw, bh, bay, lintel, mu=mu, g=g)
+        assembly_file.warn_implausible_size(a, a.name)
+        return a
     if arch is not None and any(v is not None for v in piers.values()):
         by = [("--end-piers" if k == "abutments" and v is False else
                "--" + k.replace("_", "-")) for k, v in piers.items() if v is not None]
@@ -646,8 +650,11 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
         return builders.bridge(arch, blocks, spans=1 if spans is None else spans,
                                pier_height=pier_height, pier_width=pier_width,
                                pier_blocks=pier_blocks, abutments=abutments, mu=mu, g=g)
-    a = mdof.column(column, g=g) if column is not None else mdof.arch_assembly(arch, blocks,
-                                                                               g=g)
+    if column is not None:
+        a = mdof.column(column, g=g)
+        assembly_file.warn_implausible_size(a, a.name)
+    else:
+        a = mdof.arch_assembly(arch, blocks, g=g)
     return a if mu is None else builders.with_friction(a, mu)
 
 

@@ -391,3 +391,35 @@ def test_docs_assembly_file_example():
     assert pairs == [(-1, 0, 0.6), (-1, 0, 0.6), (0, 1, 0.4)]
     # the top block (0.6 × 1 m, b/h = 0.6) slides first, at its own friction 0.4
     assert a.ap_min == pytest.approx(0.4 * G, rel=LP_TOL)
+
+
+def test_collapse_takes_one_friction_coefficient_or_one_per_joint():
+    # a number was a TypeError deep in the LP set-up (len() of unsized object), a zero
+    # returned ap_min = -0.0 and a negative one said the wall cannot stand
+    w = mdof.wall(2, 2, 0.4, 0.2)
+    one = statics.collapse(w, mu=0.5)
+    assert one.ap_min == statics.collapse(w, mu=np.full(w.n_joints, 0.5)).ap_min
+    assert one.ap_min < statics.collapse(w).ap_min  # friction only lowers ap_min
+    for bad, msg in ((0.0, "must be > 0"), (-1.0, "must be > 0"), (np.nan, "must be > 0"),
+                     ([0.5, 0.5], "one per joint")):
+        with pytest.raises(ValueError, match=msg):
+            statics.collapse(w, mu=bad)
+
+
+def test_an_mdof_arch_has_the_blocks_limit_of_every_structure():
+    # it had a fixed cap of 400 voussoirs that ROCKARCH_MAX_BLOCKS (500) could not raise
+    with pytest.raises(ValueError, match="600 blocks, above the limit of 500 "
+                                         r"\(ROCKARCH_MAX_BLOCKS\)"):
+        mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 600)
+
+
+@pytest.mark.parametrize("kw", [dict(wall="2,2", block="400,200"), dict(column=[(400, 1000)]),
+                                dict(colonnade=2, block="300,2000", bay=1000, lintel=400)])
+def test_built_in_structures_in_millimetres_warn(kw):
+    # the size sets p, and p the site, design and fragility results: arches and assembly
+    # files warned 'millimetres?', walls, columns and colonnades did not
+    from rockarch.motion.records import UnitsWarning
+    from rockarch.systems import system
+
+    with pytest.warns(UnitsWarning, match="millimetres"):
+        system("mdof", **kw)

@@ -52,9 +52,11 @@ Group = tuple[tuple[str, Any, Any], ...]
 #: that every command taking ``--system mdof`` accepts (docs/theory.md §10).
 STRUCTURE: Group = (
     ("column", str, typer.Option(None, help="A column instead of an arch: blocks bottom to "
-                                 "top, 'B,H;B,H' or 'B,H,x_centre;...' [m].")),
+                                 "top, 'B,H;B,H' or 'B,H,x_centre;...' [m] (x_centre: the "
+                                 "block's centre, from the column's axis x = 0; default "
+                                 "0).")),
     ("friction", float, typer.Option(None, help="Coulomb friction coefficient of every joint "
-                                     "(> 0); absent: joints never slide. --ratio then "
+                                     "(0.001 to 1e6); absent: joints never slide. --ratio then "
                                      "multiplies the friction-aware ap,min.")),
     ("spans", int, typer.Option(None, help="Put the arch on piers: number of equal spans (1: "
                                 "an arch on two piers; >= 2: a bridge between abutments).")),

@@ -277,8 +277,7 @@ def arch_assembly(arch, n: int, *, g: float = G) -> Assembly:
     n = integer("number of voussoirs (blocks)", n)
     if n < MIN_VOUSSOIRS:
         raise ValueError(f"an MDOF arch needs at least {MIN_VOUSSOIRS} voussoirs, got {n}")
-    if n > 400:
-        raise ValueError(f"at most 400 voussoirs are supported, got {n}")
+    limits.check_count(f"an MDOF arch of {n} voussoirs", n, "blocks", "use fewer voussoirs")
     v = voussoirs(arch, n)
     try:
         mech = analyse(arch, n, g=g)

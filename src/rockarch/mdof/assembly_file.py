@@ -116,17 +116,24 @@ def assembly_from_dict(data: dict, *, mu=None, g: float = G, source: str = "asse
     name = str(data.get("name", source))
     out = from_polygons(polys, density=dens, mu=default, contacts=contacts,
                         supports=supports, names=names, g=g, name=name, kind="assembly")
-    largest = max(float(np.ptp(np.asarray(q, float), axis=0).max()) for q in polys)
-    if not PLAUSIBLE_SIZE[0] <= out.size <= PLAUSIBLE_SIZE[1]:
+    warn_implausible_size(out, source, "coordinates")
+    return out
+
+
+def warn_implausible_size(a: Assembly, source: str, what: str = "sizes") -> None:
+    """A :class:`UnitsWarning` if the structure ``a`` (from ``source``) is not between
+    :data:`PLAUSIBLE_SIZE` across or has a block longer than :data:`PLAUSIBLE_BLOCK`: its
+    ``what`` (coordinates, sizes) are probably not in metres."""
+    largest = max(float(np.ptp(np.asarray(q, float), axis=0).max()) for q in a.polygons)
+    if not PLAUSIBLE_SIZE[0] <= a.size <= PLAUSIBLE_SIZE[1]:
         warnings.warn(UnitsWarning(
-            f"{source}: the structure is {out.size:.4g} m across: coordinates are in metres "
-            + ("(millimetres? divide them by 1000)" if out.size > PLAUSIBLE_SIZE[1] else
-               "(kilometres? multiply them by 1000)")), stacklevel=2)
+            f"{source}: the structure is {a.size:.4g} m across: {what} are in metres "
+            + ("(millimetres? divide them by 1000)" if a.size > PLAUSIBLE_SIZE[1] else
+               "(kilometres? multiply them by 1000)")), stacklevel=3)
     elif largest > PLAUSIBLE_BLOCK:
         warnings.warn(UnitsWarning(
-            f"{source}: a block is {largest:.4g} m long: coordinates are in metres "
-            "(millimetres? divide them by 1000)"), stacklevel=2)
-    return out
+            f"{source}: a block is {largest:.4g} m long: {what} are in metres "
+            "(millimetres? divide them by 1000)"), stacklevel=3)
 
 
 def _named(check, value, where: str):

@@ -32,6 +32,7 @@ from scipy.optimize import linprog
 from scipy.sparse import coo_matrix
 
 from rockarch.core.constants import G
+from rockarch.core.validate import show
 from rockarch.mdof import macroblock as mb
 from rockarch.mdof import nonassoc as na
 from rockarch.mdof import statics_cache as sc
@@ -201,6 +202,21 @@ def equivalent_block(mass, inertia, velocity, g: float = G) -> tuple[float, floa
     return math.sqrt(g * math.hypot(qx, qy) / mstar), math.atan2(abs(qy), abs(qx))
 
 
+def _coefficients(mu, nj: int) -> np.ndarray:
+    """``mu`` (a number or one per joint) as (nj,) coefficients > 0 (inf: no sliding), or a
+    ValueError naming the bad one."""
+    try:
+        out = np.broadcast_to(np.asarray(mu, dtype=float), (nj,)).copy()
+    except (TypeError, ValueError):
+        raise ValueError(f"mu must be a friction coefficient or one per joint ({nj}), got "
+                         f"{show(mu)}") from None
+    bad = np.flatnonzero(~(out > 0))  # NaN, zero and negative
+    if bad.size:
+        raise ValueError(f"friction coefficients must be > 0 (inf: no sliding); joint "
+                         f"{bad[0]} has {show(out[bad[0]])}")
+    return out
+
+
 def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=None, *,
                    g: float = G, direction: int | None = None, names=None,
                    friction: str = "nonassociative") -> Collapse:
@@ -236,7 +252,7 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     if friction not in ("nonassociative", "associative"):
         raise ValueError(f"friction must be 'nonassociative' or 'associative', got {friction!r}")
     mass = np.asarray(mass, float)
-    mu = np.full(len(normal), np.inf) if mu is None else np.asarray(mu, float)
+    mu = np.full(len(normal), np.inf) if mu is None else _coefficients(mu, len(normal))
     key = None
     if sc.root() is not None:  # the result store (the CLI): a second build reuses it
         inputs = tuple(np.asarray(v, dtype=float) for v in (
