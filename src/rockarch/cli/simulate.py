@@ -224,12 +224,15 @@ def _count(n: int, word: str) -> str:
     return f"{n} {word}{'' if n == 1 else 's'}"
 
 
+def _delta_name(a) -> str:
+    """An arch's reference is its four-hinge mechanism, on the dynamics' coordinate u."""
+    return "delta_u" if "hinges" in a.info else "delta"
+
+
 def _mdof_header(a) -> str:
     fr = "" if a.frictionless else f", friction {np.min(a.mu):g}" + (
         "" if np.ptp(a.mu) == 0 else f"..{np.max(a.mu):g}")
-    # an arch's reference is its four-hinge mechanism, on the dynamics' coordinate u
-    d = "delta_u" if "hinges" in a.info else "delta"
-    ref = f"p={a.p_ref:.4g} 1/s, {d}={a.delta_ref:.4g} rad"
+    ref = f"p={a.p_ref:.4g} 1/s, {_delta_name(a)}={a.delta_ref:.4g} rad"
     if a.slides:
         ref = (f"its collapse mechanism slides; rocking alone from "
                f"{a.info['ap_min_no_sliding']:.4g} m/s², {ref}")
@@ -241,8 +244,7 @@ def _mdof_parameters(a) -> dict:
     """The structure's numbers that :func:`_mdof_header` prints, for ``--json`` (SI units):
     ap_min, the reference mechanism's p and delta (delta_u for an arch), and rocking's
     ap_min where the collapse mechanism slides."""
-    d = "delta_u" if "hinges" in a.info else "delta"
-    out = {"ap_min": a.ap_min, "p": a.p_ref, d: a.delta_ref, "blocks": a.n_blocks,
+    out = {"ap_min": a.ap_min, "p": a.p_ref, _delta_name(a): a.delta_ref, "blocks": a.n_blocks,
            "joints": a.n_joints}
     if a.slides:
         out["ap_min_rocking"] = a.info["ap_min_no_sliding"]
