@@ -106,17 +106,22 @@ def test_inline_fragility_runs_the_ida_in_the_hazards_im(folder, tmp_path):
 @pytest.mark.parametrize("extra, named", [
     (["--system", "mdof", "--column", "0.4,1", "--friction", "0.6"],
      "--system, --column, --friction"),
-    (["--system", "block", "--alpha", "0.1"], "--alpha"),
+    (["--system", "block", "--alpha", "0.1"], "--system, --alpha"),
     (["--wall", "2,2", "--block", "0.4,0.2"], "--wall, --block"),
     (["--end-piers"], "--end-piers"),
     (["--ratio-steps", "9"], "--ratio-steps"),
     (["--tol", "0.5", "--search-step", "0.1"], "--tol, --search-step"),
     (["--island-step", "3", "--g", "9.8", "--t-free", "5"], "--t-free, --g, --island-step"),
     (["--units", "g", "--workers", "1", "--no-store"], "--units, --workers, --no-store"),
+    # typed at their defaults: given all the same (Click's parameter source, not the value)
+    (["--system", "block"], "--system"),
+    (["--g", "9.81", "--t-free", "10"], "--t-free, --g"),
+    (["--island-step", "1", "--abutments"], "--abutments, --island-step"),
 ])
 def test_fragility_file_refuses_the_inline_options(frag_json, extra, named):
     # a fragility file holds its structure and scan: every option that builds one inline
-    # is refused with it (they were silently ignored), named in the one line
+    # is refused with it (they were silently ignored), named in the one line, whatever
+    # its value (`--system block`, the default, passed silently before)
     res = runner.invoke(app, ["risk", "--hazard", TWO_COLUMN, "--fragility", str(frag_json),
                               *extra])
     assert res.exit_code == 2, res.stdout

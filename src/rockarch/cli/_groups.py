@@ -195,15 +195,23 @@ def sweep_options(opts: dict) -> dict:
             "no_store": opts["no_store"]}
 
 
-def given(opts: dict, *groups: Group) -> list[str]:
-    """The options of ``groups`` given on the command line, by their flags: those whose
-    value differs from the option's default (an empty list is not given; a hidden argument
-    is named by its values).
+#: Where an option given by the user comes from (Click's ParameterSource, by name: typer
+#: carries its own copy of Click).
+GIVEN_SOURCES = ("COMMANDLINE", "ENVIRONMENT")
+
+
+def given(ctx: typer.Context, opts: dict, *groups: Group) -> list[str]:
+    """The options of ``groups`` given on the command line (or by an environment variable),
+    by their flags, whatever their value: Click's parameter source says so (``--system
+    block`` and ``--g 9.81`` are given although they equal the defaults); a hidden argument
+    is named by its values.
 
     Parameters
     ----------
+    ctx : typer.Context
+        The running command's context (a ``ctx: typer.Context`` parameter of the command).
     opts : dict
-        A command's ``**opts``.
+        The command's ``**opts``.
     *groups : Group
         The groups whose options are looked at.
 
@@ -215,12 +223,10 @@ def given(opts: dict, *groups: Group) -> list[str]:
     out = []
     for group in groups:
         for name, _, opt in group:
-            v = opts[name]
-            if isinstance(v, (list, tuple)):
-                if not v:
-                    continue
-            elif v is None or getattr(v, "value", v) == opt.default:
+            source = ctx.get_parameter_source(name)
+            if getattr(source, "name", None) not in GIVEN_SOURCES:
                 continue
+            v = opts[name]
             if isinstance(opt, typer.models.ArgumentInfo):
                 out.append(" ".join(str(x) for x in v))
                 continue

@@ -62,6 +62,7 @@ def check_years(years: float) -> float:
 @options(RISK, SYSTEM, IDA, before="plot")
 @options(SWEEP)
 def risk(
+    ctx: typer.Context,
     hazard: Path = HAZARD_OPT,
     fragility: Path = typer.Option(None, "--fragility", help="The fragility: the JSON of "
                                    "`rockarch fragility --json` in the hazard's IM; or, "
@@ -82,7 +83,7 @@ def risk(
            "or its options inline (--system ... --p P --records DIR), not both")
     if fragility is None and opts["p"] is None and not opts["records"]:
         raise ValueError(ask)
-    inline = given(opts, SYSTEM, IDA, SWEEP)
+    inline = given(ctx, opts, SYSTEM, IDA, SWEEP)
     if fragility is not None and inline:
         # a fragility file holds its structure and scan: no option of either applies
         raise ValueError(f"{ask} ({', '.join(inline)} given with --fragility)")
