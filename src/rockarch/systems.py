@@ -310,7 +310,7 @@ G_MAX = 1000.0
 _ARCH = ("shape", "span", "rise", "thickness", "rise_over_span", "thickness_over_span",
          "blocks")
 _MDOF_ONLY = ("column", "friction", "spans", "pier_height", "pier_width", "pier_blocks",
-              "abutments", "wall", "block", "colonnade", "bay", "lintel", "assembly")
+              "abutments", "wall", "block", "colonnade", "drums", "bay", "lintel", "assembly")
 #: The keywords of :func:`system` that each kind takes (g, t_free and gap_tol: every kind).
 _APPLIES = {
     "block": {"alpha", "p", "width", "height", "restitution", "h_factor"},
@@ -323,7 +323,7 @@ _NUMBERS = ("alpha", "p", "width", "height", "span", "rise", "thickness", "rise_
             "thickness_over_span", "mass_ratio", "delta", "ap_min", "restitution", "g",
             "t_free", "h_factor", "gap_tol", "friction", "pier_height", "pier_width", "bay",
             "lintel")
-_INTEGERS = ("blocks", "spans", "pier_blocks", "colonnade")
+_INTEGERS = ("blocks", "spans", "pier_blocks", "colonnade", "drums")
 _EVERY_KIND = ("g", "t_free", "gap_tol")
 _ALL_KEYWORDS = {*_NUMBERS, *_INTEGERS, "shape", "column", "abutments", "wall", "block",
                  "assembly"}
@@ -410,8 +410,8 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
            pier_height: float | None = None, pier_width: float | None = None,
            pier_blocks: int | None = None, abutments: bool | None = None,
            wall: Sequence[int] | None = None, block: Sequence[float] | None = None,
-           colonnade: int | None = None, bay: float | None = None,
-           lintel: float | None = None, assembly=None):
+           colonnade: int | None = None, drums: int | None = None,
+           bay: float | None = None, lintel: float | None = None, assembly=None):
     """Build a rocking structure of one kind: a block, a mechanism or a multi-block assembly.
 
     The same options as ``rockarch simulate/oas --system KIND``; each kind takes its own
@@ -477,6 +477,9 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
     colonnade : int, optional
         mdof: that many columns of size ``block``, ``bay`` [m] apart, under a lintel of
         depth ``lintel`` [m] (2 columns: a trilithon).
+    drums : int, optional
+        mdof: each column of ``colonnade`` made of that many equal drums stacked with dry
+        joints (default 1: monolithic columns); only with ``colonnade``.
     bay, lintel : float, optional
         mdof: column spacing and lintel depth of a colonnade [m].
     assembly : path or dict, optional
@@ -538,6 +541,7 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
         return BlockSystem(alpha=alpha, g=g, restitution=restitution, t_free=t_free,
                            h_factor=sdof_h, p=p)
     if kind == "mdof":
+        check_drums(drums, colonnade)  # before an arch is asked for
         if restitution is not None:
             raise ValueError("an mdof system has no restitution: joints close with "
                              "inelastic impacts (the restitution follows from the geometry)")
@@ -561,8 +565,8 @@ def system(kind: str, *, alpha: float | None = None, p: float | None = None,
         assembly = mdof_assembly(
             arch=arch, blocks=blocks, column=column, friction=friction, spans=spans,
             pier_height=pier_height, pier_width=pier_width, pier_blocks=pier_blocks,
-            abutments=abutments, wall=wall, block=block, colonnade=colonnade, bay=bay,
-            lintel=lintel, assembly=assembly, g=g)
+            abutments=abutments, wall=wall, block=block, colonnade=colonnade, drums=drums,
+            bay=bay, lintel=lintel, assembly=assembly, g=g)
         return MDOFSystem(assembly, t_free=t_free,
                           h_factor=MDOF_H_FACTOR if h_factor is None else h_factor,
                           gap_tol=gap_tol)
@@ -599,9 +603,36 @@ def _pair(name: str, form: str, values) -> tuple:
     return vals
 
 
+def check_drums(drums, colonnade) -> None:
+    """Drums per column (``--drums``): None, or an integer >= 1 beside a colonnade.
+
+    Parameters
+    ----------
+    drums : int or None
+        Drums per column of the colonnade.
+    colonnade : int or None
+        Columns of the colonnade (None: no colonnade).
+
+    Raises
+    ------
+    TypeError
+        If ``drums`` is not a whole number.
+    ValueError
+        If ``drums`` is below 1, or given without a colonnade.
+    """
+    if drums is None:
+        return
+    if colonnade is None:
+        raise ValueError("--drums divides the columns of a colonnade: give --colonnade N "
+                         "(with --block B,H --bay S --lintel D) or leave --drums out")
+    if integer("drums", drums) < 1:
+        raise ValueError(f"--drums must be an integer >= 1 (drums per column), got "
+                         f"{show(drums)}")
+
+
 def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=None,
                   pier_height=None, pier_width=None, pier_blocks=None, abutments=None,
-                  wall=None, block=None, colonnade=None, bay=None, lintel=None,
+                  wall=None, block=None, colonnade=None, drums=None, bay=None, lintel=None,
                   assembly=None, g: float = G) -> Assembly:
     """The MDOF assembly of :func:`system`'s keywords: exactly one of an arch (alone or on
     piers), a column, a wall, a colonnade or an assembly file, with ``friction``."""
@@ -620,6 +651,7 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
         raise ValueError("--block sizes the blocks of a wall or a colonnade")
     if (bay is not None or lintel is not None) and colonnade is None:
         raise ValueError("--bay and --lintel belong to a colonnade")
+    check_drums(drums, colonnade)
     mu = None if friction is None else builders.friction_value(friction)
     if assembly is not None:
         if isinstance(assembly, dict):
@@ -640,7 +672,8 @@ def mdof_assembly(*, arch=None, blocks=None, column=None, friction=None, spans=N
             assembly_file.warn_implausible_size(a, a.name)
             return a
         _need(["--colonnade"], bay=bay, lintel=lintel)
-        a = builders.colonnade(colonnade, bw, bh, bay, lintel, mu=mu, g=g)
+        a = builders.colonnade(colonnade, bw, bh, bay, lintel,
+                               drums=1 if drums is None else drums, mu=mu, g=g)
         assembly_file.warn_implausible_size(a, a.name)
         return a
     if arch is not None and any(v is not None for v in piers.values()):

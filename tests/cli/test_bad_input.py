@@ -13,6 +13,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,10 +21,12 @@ from typer.testing import CliRunner
 
 from rockarch.cli import app
 from rockarch.motion.records import bundled_record_path
+from rockarch.risk import hazard
 from rockarch.spectra import site
 
 runner = CliRunner()
 REC = str(bundled_record_path(180))
+HAZARD = str(Path(hazard.__file__).parent / "data" / "hazard_curve-mean-PGA.csv")
 
 AT2_HEAD = ("PEER NGA STRONG MOTION DATABASE RECORD\nTest, 1/1/2000, Station, 90\n"
             "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=      4, DT=   .0100 SEC\n")
@@ -413,6 +416,25 @@ def _issue22_cases(add) -> None:
     add("mdof-wall=30x30", mdof_col + ["--wall", "30,30", "--block", "0.4,0.2"])
     add("mdof-colonnade=1e6", mdof_col + ["--colonnade", "1000000", "--block", "0.4,2",
                                           "--bay", "1", "--lintel", "0.5"])
+    # --drums: a whole number >= 1, with --colonnade only, on every command that takes it
+    col = ["--colonnade", "2", "--block", "0.3,2", "--bay", "1", "--lintel", "0.4"]
+    add("mdof-drums=0", mdof_col + col + ["--drums", "0"])
+    add("mdof-drums=1e6", mdof_col + col + ["--drums", "1000000"])
+    add("mdof-drums-without-colonnade", mdof_col + ["--column", "0.4,1", "--drums", "2"])
+    add("animate-drums-without-colonnade", _sub(ANIM, drums="2"))
+    add("oas-mdof-drums=-1", _sub(OAS, alpha=None, system="mdof", colonnade="2",
+                                  block="0.3,2", bay="1", lintel="0.4", drums="-1"))
+    add("site-mdof-drums-without-colonnade", _sub(SITE, system="mdof", wall="2,2",
+                                                  block="0.4,0.2", drums="2"))
+    add("fragility-drums-without-colonnade", ["fragility", "--system", "mdof", "--column",
+                                              "0.4,1", "--drums", "2", "--records", REC,
+                                              "--no-store"])
+    add("risk-drums-without-colonnade", ["risk", "--hazard", HAZARD, "--system", "mdof",
+                                         "--column", "0.4,1", "--drums", "2", "--p", "2",
+                                         "--records", REC, "--no-store"])
+    add("design-system-drums=0", ["design", "--system", "mdof", *col, "--drums", "0",
+                                  "--site", "{files}/site.nc"])
+    add("design-arch-drums", DESIGN + ["--drums", "2"])
     add("mdof-bridge-spans=300", _sub(SIM["mdof"] + MOTION, spans="300", pier_height="3",
                                       pier_width="1"))
     add("mdof-pier-blocks=1e6", _sub(SIM["mdof"] + MOTION, spans="1", pier_height="3",

@@ -96,6 +96,56 @@ def test_wall_colonnade_and_assembly_file(tmp_path):
     assert a.ap_min == pytest.approx(0.3 * G, rel=1e-7)
 
 
+def test_colonnade_of_drums_from_ra_system_and_the_cli():
+    # --drums N / drums=N: columns of N equal drums (rockarch.mdof.builders.colonnade)
+    tri = dict(colonnade=2, block=(0.3, 2.0), bay=1.0, lintel=0.4)
+    a = system("mdof", drums=3, **tri).assembly
+    b = mdof.colonnade(2, 0.3, 2.0, 1.0, 0.4, drums=3)
+    assert a.n_blocks == b.n_blocks == 2 * 3 + 1 and a.info["drums"] == 3
+    assert np.array_equal(a.corners, b.corners) and a.ap_min == b.ap_min
+    assert "of 3 drums" in a.name
+    one = system("mdof", drums=1, **tri).assembly  # drums=1: monolithic, as without it
+    assert one.name == system("mdof", **tri).assembly.name and one.n_blocks == 3
+    out = _json(["simulate", "mdof", "--colonnade", "2", "--drums", "3", "--block", "0.3,2",
+                 "--bay", "1", "--lintel", "0.4", "--signal", "sine", "--period", "0.2",
+                 "--ratio", "0.5", "--t-free", "0.5", "--no-step-check", "--json"])
+    assert out["blocks"] == 7 and out["joints"] == 8
+
+
+def test_drums_wherever_colonnade_is():
+    # every command that takes --colonnade (the shared STRUCTURE group) takes --drums
+    import typer
+
+    def commands(group, prefix=""):
+        for name, cmd in group.commands.items():
+            if hasattr(cmd, "commands"):
+                yield from commands(cmd, f"{prefix}{name} ")
+            else:
+                yield prefix + name, {p.name for p in cmd.params}
+
+    found = {name for name, params in commands(typer.main.get_command(app))
+             if "colonnade" in params}
+    assert {"simulate mdof", "animate", "oas", "site-oas", "fragility", "risk",
+            "design"} <= found
+    for name, params in commands(typer.main.get_command(app)):
+        assert ("drums" in params) == ("colonnade" in params), name
+
+
+@pytest.mark.parametrize("args, msg", [
+    (["simulate", "mdof", "--drums", "2", *PULSE, "--ratio", "1"], "--drums divides the "
+     "columns of a colonnade: give --colonnade N"),
+    (["simulate", "mdof", *ARCH, "--drums", "2", *PULSE, "--ratio", "1"], "give --colonnade"),
+    (["oas", "--system", "mdof", "--wall", "2,2", "--block", "0.4,0.2", "--drums", "2",
+      *PULSE, "--p", "2"], "give --colonnade"),
+    (["simulate", "mdof", "--colonnade", "2", "--block", "0.3,2", "--bay", "1", "--lintel",
+      "0.4", "--drums", "0", *PULSE, "--ratio", "1"], "--drums must be an integer >= 1"),
+    (["oas", "--system", "block", "--alpha", "0.1", "--drums", "2", *PULSE, "--p", "2"],
+     "--drums belongs to --system mdof"),
+])
+def test_bad_drums_are_one_line(args, msg):
+    assert msg in _error(args)
+
+
 def test_header_names_the_structure_and_mechanism_png(tmp_path):
     png = tmp_path / "mech.png"
     res = runner.invoke(app, ["simulate", "mdof", "--colonnade", "2", "--block", "0.3,2",

@@ -320,8 +320,8 @@ def column_blocks(column: str) -> list[np.ndarray]:
 
 #: The command parameters of the MDOF structure options, passed on to systems.system().
 MDOF_STRUCTURE_KEYS = ("column", "friction", "spans", "pier_height", "pier_width",
-                       "pier_blocks", "abutments", "wall", "block", "colonnade", "bay",
-                       "lintel", "assembly")
+                       "pier_blocks", "abutments", "wall", "block", "colonnade", "drums",
+                       "bay", "lintel", "assembly")
 
 
 def mdof_structure(params: dict) -> dict:

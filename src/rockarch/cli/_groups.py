@@ -73,6 +73,9 @@ STRUCTURE: Group = (
                                 "of --colonnade.")),
     ("colonnade", int, typer.Option(None, help="A colonnade: number of --block columns (2: a "
                                     "trilithon) under one lintel.")),
+    ("drums", int, typer.Option(None, help="Colonnade: each column made of N equal drums "
+                                "stacked on dry joints (default 1: monolithic columns; "
+                                "--block is the whole column).")),
     ("bay", float, typer.Option(None, help="Colonnade: clear spacing of the columns [m].")),
     ("lintel", float, typer.Option(None, help="Colonnade: lintel depth [m].")),
     ("assembly", Path, typer.Option(None, help="An assembly of convex blocks from a JSON file "

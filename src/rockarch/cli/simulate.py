@@ -30,7 +30,7 @@ from rockarch.cli._groups import MDOF, MDOF_STEP, MOTION, RATIO, RUN, SDOF, opti
 from rockarch.core.validate import positive
 from rockarch.mdof.simulate import STEP_CHECK_MAX_BLOCKS
 from rockarch.output import check_outputs
-from rockarch.systems import BlockSystem, scale_to_ratio
+from rockarch.systems import BlockSystem, check_drums, scale_to_ratio
 from rockarch.systems import system as make_system
 
 #: Slips below this [m] are the contact solve's tolerance (10⁻⁶·g·h per step, a few µm at
@@ -204,6 +204,7 @@ def _mdof_system(opts: dict, t_free: float, g: float):
     """The MDOF structure of `simulate mdof` / `animate`: an arch (alone or on piers) or
     the structure of the other options (:func:`mdof_structure`)."""
     structure = mdof_structure(opts)
+    check_drums(structure.get("drums"), structure.get("colonnade"))
     arch = [opts[k] for k in ("shape", "span", "rise", "thickness", "blocks")]
     others = {"column", "wall", "colonnade", "assembly"} & set(structure)
     if not others and None in arch:

@@ -319,8 +319,9 @@ def colonnade(n_columns: int, width: float, height: float, spacing: float,
     names.append("lintel")
     kind = "trilithon" if n == 2 else "colonnade"
     return from_polygons(polys, mu=mu, g=g, names=names, kind=kind,
-                         name=f"{kind}: {n} columns {b:g}x{hc:g} m, spacing {s:g} m, "
-                              f"lintel {d:g} m",
+                         name=f"{kind}: {n} columns {b:g}x{hc:g} m"
+                              + (f" of {drums} drums" if drums > 1 else "")
+                              + f", spacing {s:g} m, lintel {d:g} m",
                          info={"columns": n, "drums": drums})
 
 
