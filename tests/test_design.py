@@ -147,6 +147,82 @@ def test_site_oas_cli(tmp_path):
     assert site.load(out).sizes["record"] == 2
 
 
+@pytest.fixture(scope="module")
+def single_column(tmp_path_factory):
+    """A folder of one single-column record in g (El Centro 180's first 15 s, dt 0.01 s)
+    and its site file by `site-oas --units g --dt 0.01`."""
+    d = tmp_path_factory.mktemp("single")
+    (d / "records").mkdir()
+    a = site.load_records([bundled_record_path(180)])[0][0].a[:1500]
+    np.savetxt(d / "records" / "elc_g.txt", a / 9.80665)
+    res = runner.invoke(app, ["site-oas", "--records", str(d / "records"), "--units", "g",
+                              "--dt", "0.01", "--p-min", "2", "--p-max", "4", "--p-steps",
+                              "3", "--ratio-steps", "9", "--out", str(d / "site.nc")])
+    assert res.exit_code == 0, res.output
+    return d
+
+
+def test_site_file_records_how_its_records_were_read(single_column, site_file, tmp_path):
+    # --units and --dt are in the file, per record, beside its SHA-256
+    ds = site.load(single_column / "site.nc")
+    assert ds["record_units"].values.tolist() == ["g"]
+    assert ds["record_dt"].values.tolist() == [0.01] and ds["record_dt"].attrs["units"] == "s"
+    assert site.read_options(ds) == {"units": "g", "dt": 0.01}
+    # .AT2 files state their own units and step: nothing was given
+    bundled = site.load(site_file)
+    assert bundled["record_units"].values.tolist() == ["", ""]
+    assert np.isnan(bundled["record_dt"].values).all()
+    assert site.read_options(bundled) == {"units": None, "dt": None}
+    # a two-column file: its units (the reader's default m/s2 where none were given)
+    t = np.arange(300) * 0.01
+    two = tmp_path / "two.txt"
+    np.savetxt(two, np.c_[t, 300 * np.sin(8 * t)])
+    motions, hashes = site.load_records([two], "cm/s2")
+    ds2 = site.site_oas(motions, [2.0], [1.0, 2.0], hashes=hashes, progress=False)
+    assert ds2["record_units"].values.tolist() == ["cm/s2"] and np.isnan(ds2["record_dt"][0])
+    # read back: the records are read again as the file says, without --units or --dt
+    suite = site.check_records(ds, single_column / "records")
+    assert suite.names == ["elc_g.txt"]
+    assert suite[0].motion.pga == pytest.approx(float(ds["record_pga"][0]), rel=1e-12)
+    with pytest.raises(ValueError, match="records were read with --units g --dt 0.01"):
+        site.check_records(ds, single_column / "records", units="m/s2")
+    with pytest.raises(ValueError, match="records were read without --units or --dt"):
+        site.check_records(bundled, single_column / "records", dt=0.01)
+    assert len(site.check_records(bundled, bundled_record_path(180).parent)) == 2
+    with pytest.raises(ValueError, match="ELC270.*not among the records given"):
+        site.check_records(bundled, [bundled_record_path(180)])
+    # and the design report says how each record was read
+    rep = tmp_path / "r.html"
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                              "2.89", "--thickness", "0.35", "--site",
+                              str(single_column / "site.nc"), "--report", str(rep)])
+    assert res.exit_code == 0, res.output
+    assert "<th>read with</th>" in rep.read_text()
+    assert "<td>--units g --dt 0.01</td>" in rep.read_text()
+
+
+def test_older_site_files_read_as_before(single_column, tmp_path):
+    # a file written before site files recorded --units and --dt: read as before, the
+    # caller's options used where the records are read again
+    old = site.load(single_column / "site.nc").drop_vars(["record_units", "record_dt"])
+    f = tmp_path / "old.nc"
+    site.save(old, f)
+    old = site.load(f)
+    assert site.read_options(old) == {}
+    folder = single_column / "records"
+    assert site.check_records(old, folder, units="g", dt=0.01).names == ["elc_g.txt"]
+    with pytest.raises(ValueError, match="give it"):  # a single-column file needs its dt
+        site.check_records(old, folder)
+    with pytest.raises(ValueError, match="its PGA is 0.00280.* does not record them"):
+        site.check_records(old, folder, units="cm/s2", dt=0.01)
+    rep = tmp_path / "r.html"
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                              "2.89", "--thickness", "0.35", "--site", str(f), "--report",
+                              str(rep)])
+    assert res.exit_code == 0, res.output
+    assert "read with" not in rep.read_text() and "SHA-256 of the file" in rep.read_text()
+
+
 def test_report_writer_rejects_missing_dir(site_file, tmp_path):
     ds = site.load(site_file)
     r = design_check(circular(10.0, 2.89, 0.35), ds)

@@ -17,6 +17,7 @@ from rockarch.design import DesignResult, SystemDesign
 from rockarch.output.arch_plots import design_arch_figure
 from rockarch.output.figures import new_figure
 from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
+from rockarch.spectra.site import read_with
 
 ASSUMPTIONS = [
     "The arch is replaced by a catenary arch carrying its own mass (paper Sect. 4 and 8), on "
@@ -78,6 +79,28 @@ def _inputs_table(result: DesignResult, site_ds: xr.Dataset, inputs: dict,
         ("site built with rockarch", str(site_ds.attrs.get("rockarch_version")))])
 
 
+def read_as(units: str, dt: float) -> str:
+    """How a site file says a record was read (its ``record_units``, ``record_dt``):
+    '--units g --dt 0.01', 'its own units' (an .AT2, ESM, K-NET or COSMOS file)."""
+    if not units:
+        return "its own units"
+    return f"--units {units}" + (f" --dt {dt:g}" if np.isfinite(dt) else "")
+
+
+def _records_table(site_ds: xr.Dataset) -> str:
+    """The site's records: name, PGA, how each was read (files that record it) and the
+    SHA-256 of its file."""
+    cols = [site_ds["record_name"].values, site_ds["record_pga"].values / G_STANDARD]
+    head = ["record", "PGA [g]"]
+    if "record_units" in site_ds and "record_dt" in site_ds:  # older files do not say
+        head.append("read with")
+        cols.append([read_as(str(u), float(d)) for u, d in zip(
+            site_ds["record_units"].values, site_ds["record_dt"].values, strict=True)])
+    cols.append(site_ds["record_sha256"].values)
+    rows = [(row[0], f"{row[1]:.4f}", *row[2:]) for row in zip(*cols, strict=True)]
+    return table([*head, "SHA-256 of the file"], rows)
+
+
 def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inputs: dict,
                 site_path: str | None = None, extra_html: str = "",
                 caveats: Sequence[str] = ()) -> str:
@@ -93,10 +116,7 @@ def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inpu
                f"islands searched below the site OAS grid, which reads "
                f"{result.ratio_grid:.4f} there) " if result.islands_lower
                else f"read on the site's {result.curve} ")
-    records = table(["record", "PGA [g]", "SHA-256 of the file"], [
-        (n, f"{pga / G_STANDARD:.4f}", h) for n, pga, h in zip(
-            site_ds["record_name"].values, site_ds["record_pga"].values,
-            site_ds["record_sha256"].values, strict=True)])
+    records = _records_table(site_ds)
     replacements = table(
         ["replacement", "d [m]", "d/l′", "d/l", "l′ [m]", "f′ [m]", "p [1/s]",
          "ap,min [m/s²]", "c1", "c2", "block R [m]"],
@@ -218,10 +238,11 @@ ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.
         if frag.fit is not None:
             body += fragility_html(frag, r.summary, suite, of=escape(r.system))
     if suite is not None:
-        body += "<h2>Records</h2>\n" + table(["record", "PGA [g]", "SHA-256 of the file"], [
-            (rec.name, f"{rec.motion.pga / G_STANDARD:.4f}",
-             hashlib.sha256(Path(rec.path).read_bytes()).hexdigest() if rec.path else "")
-            for rec in suite])
+        body += "<h2>Records</h2>\n" + table(
+            ["record", "PGA [g]", "read with", "SHA-256 of the file"],
+            [(rec.name, f"{rec.motion.pga / G_STANDARD:.4f}", read_as(*read_with(rec.motion)),
+              hashlib.sha256(Path(rec.path).read_bytes()).hexdigest() if rec.path else "")
+             for rec in suite])
     body += f"""<h2>Assumptions</h2>
 <ol>{''.join(f'<li>{escape(a)}</li>' for a in SYSTEM_ASSUMPTIONS[r.method])}</ol>
 <h2>Inputs (to rerun)</h2>

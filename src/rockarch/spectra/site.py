@@ -4,13 +4,15 @@ For each record the OAS of a slender rigid block is computed (records scaled to
 PGA = ratio·ap,min, as in :mod:`rockarch.spectra.oas`); the site's curves are the **envelope**
 (the lowest overturning ratio over all records, at each p) and a chosen **percentile** of
 the records' boundaries (a record that does not overturn within the ratio range counts as
-+inf). The result is a NetCDF file of kind ``rockarch-site-oas`` with the records' names
-and SHA-256 hashes, reused by :mod:`rockarch.design`.
++inf). The result is a NetCDF file of kind ``rockarch-site-oas`` with the records' names,
+SHA-256 hashes and how they were read (``--units``, ``--dt``), reused by
+:mod:`rockarch.design`; :func:`check_records` reads the records again as the file says.
 """
 
 from __future__ import annotations
 
 import hashlib
+import math
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -26,6 +28,7 @@ from rockarch.core.sweep.limits import check_simulations
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.suite import (
     PGA_RANGE,
+    Suite,
     as_motions,
     check_distinct,
     read_suite,
@@ -44,6 +47,10 @@ ALPHA = 0.05
 
 #: Site curves a site OAS may hold (``rockarch design --curve``).
 CURVES = ("envelope", "characteristic", "normalised", "simplified")
+
+#: Record formats read in the units of ``--units`` (and, single-column, at the step of
+#: ``--dt``); the others state their own units and time step.
+TEXT_FORMATS = ("two-column", "single-column")
 
 
 def record_paths(paths) -> list[Path]:
@@ -79,6 +86,32 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
     return motions, hashes
 
 
+def read_with(motion: GroundMotion) -> tuple[str, float]:
+    """How a record was read: the units (``--units``) and time step (``--dt``) given to the
+    reader, as a site file records them.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        A record read by :func:`rockarch.motion.records.read_record` (or any motion).
+
+    Returns
+    -------
+    units : str
+        The units of a text file's accelerations (two-column or single-column; "m/s2" where
+        none were given, the reader's default); "" where the file states its own (.AT2,
+        ESM, K-NET, COSMOS) or the motion is not a file's.
+    dt : float
+        The time step [s] given for a single-column file; NaN where the file gives its own.
+    """
+    meta = motion.meta or {}
+    fmt = meta.get("format")
+    if fmt not in TEXT_FORMATS:
+        return "", math.nan
+    dt = float(meta["dt"]) if fmt == "single-column" else math.nan
+    return str(meta.get("units_in_file") or "m/s2"), dt
+
+
 def curves(boundary, percentile: float) -> tuple[np.ndarray, np.ndarray]:
     """The site's envelope and percentile curves of the records' boundaries (record, ...)
     (docs/theory.md Eq. (2.2), a record that does not overturn within range counting as
@@ -104,7 +137,8 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
 
     Returns a Dataset with ``overturned`` (record, p, ratio), ``boundary`` (record, p),
     ``envelope`` (p), ``characteristic`` (p) (the ``percentile`` of the boundaries; a lower
-    percentile is more conservative), and the records' names, PGAs and hashes.
+    percentile is more conservative), and the records' names, PGAs, hashes and how each
+    was read (``record_units``, ``record_dt``: :func:`read_with`).
     ``executor`` and ``store`` are those of :func:`rockarch.spectra.oas.compute_oas` (one
     executor serves every record: a pool or cluster starts once).
     ``log`` (e.g. ``print`` where no progress bar is shown) gets a line per record done.
@@ -146,6 +180,7 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     env, char = curves(b, percentile)
     names = [m.name for m in motions]
     hashes = list(hashes) if hashes is not None else [m.fingerprint() for m in motions]
+    read_units, read_dt = zip(*(read_with(m) for m in motions), strict=True)
     import xarray as xr
 
     ds = xr.Dataset(
@@ -158,6 +193,8 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
             "record_name": (("record",), np.array(names, dtype=str)),
             "record_sha256": (("record",), np.array(hashes, dtype=str)),
             "record_pga": (("record",), np.array([m.pga for m in motions])),
+            "record_units": (("record",), np.array(read_units, dtype=str)),
+            "record_dt": (("record",), np.array(read_dt, dtype=float)),
         },
         coords={"record": np.arange(len(motions)), "p": maps[0]["p"].values,
                 "ratio": maps[0]["ratio"].values},
@@ -170,6 +207,10 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     ds["record_sha256"].attrs.update(long_name="SHA-256 of the record file (or of its "
                                                "samples)")
     ds["record_pga"].attrs.update(units="m/s2", long_name="peak ground acceleration")
+    ds["record_units"].attrs.update(long_name="units the record was read in (--units: text "
+                                              "files; empty: the file states its own)")
+    ds["record_dt"].attrs.update(units="s", long_name="time step the record was read at "
+                                 "(--dt: single-column files; NaN: the file gives its own)")
     ds["overturned"].attrs.update(long_name="overturned at (p, ap/ap,min)")
     ds["boundary"].attrs.update(units="1", long_name="lowest overturning ap/ap,min of each "
                                 "record", tolerance=float(tol))
@@ -248,6 +289,117 @@ def load(path) -> xr.Dataset:
         raise ValueError(f"{path}: site OAS format version {version}, this rockarch reads "
                          f"version {FORMAT_VERSION}: rebuild it with `rockarch site-oas`")
     return ds
+
+
+def read_options(ds: xr.Dataset) -> dict:
+    """The ``units`` and ``dt`` with which a site file's records were read (``--units``,
+    ``--dt``; keywords of :func:`rockarch.motion.suite.read_suite`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A site OAS (:func:`load`).
+
+    Returns
+    -------
+    dict
+        ``{"units": str or None, "dt": float or None}`` (None: no record took one); ``{}``
+        for a file written before site files recorded them (its records' reading is
+        unknown: the caller's options, as then).
+
+    Raises
+    ------
+    ValueError
+        If the records were read with different units or time steps (then read them one
+        by one: ``ds["record_units"]``, ``ds["record_dt"]``).
+    """
+    if "record_units" not in ds or "record_dt" not in ds:
+        return {}
+    units = sorted({str(u) for u in ds["record_units"].values if str(u)})
+    dts = sorted({float(d) for d in ds["record_dt"].values if np.isfinite(d)})
+    if len(units) > 1 or len(dts) > 1:
+        raise ValueError(f"the site's records were read with different --units ({units}) "
+                         f"or --dt ({dts}): read them one by one (record_units, record_dt)")
+    return {"units": units[0] if units else None, "dt": dts[0] if dts else None}
+
+
+def _read_as(opts: dict) -> str:
+    """A reading (``units``, ``dt``) as an error names it: 'with --units g --dt 0.01',
+    'without --units or --dt'."""
+    words = ([f"--units {opts['units']}"] if opts["units"] is not None else []) + (
+        [f"--dt {opts['dt']:g}"] if opts["dt"] is not None else [])
+    return f"with {' '.join(words)}" if words else "without --units or --dt"
+
+
+def _same_option(a, b) -> bool:
+    """Two values of --units (spelt alike up to case and blanks) or of --dt."""
+    if isinstance(a, str) and isinstance(b, str):
+        return a.strip().lower().replace(" ", "") == b.strip().lower().replace(" ", "")
+    if isinstance(a, str) or isinstance(b, str) or a is None or b is None:
+        return a is b
+    return math.isclose(float(a), float(b), rel_tol=1e-12)
+
+
+def check_records(ds: xr.Dataset, sources, *, units: str | None = None,
+                  dt: float | None = None) -> Suite:
+    """Read a site file's records again as the file says they were read, and check that
+    they are the ones it was computed from.
+
+    Each record of ``ds`` is found among ``sources`` by its SHA-256 (of the file, as
+    ``rockarch site-oas`` writes it, or of its samples) and must have the PGA the file
+    holds.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A site OAS (:func:`load`).
+    sources : path or list of paths
+        Record files and folders (:func:`rockarch.motion.suite.read_suite`).
+    units : str, optional
+        Units of text records (``--units``): needed only for a file that does not record
+        them (written before site files did); otherwise it must agree with the file's.
+    dt : float, optional
+        Time step [s] of single-column records (``--dt``), as ``units``.
+
+    Returns
+    -------
+    Suite
+        The site's records in the file's order, read as the file says (``units`` and
+        ``dt`` of :func:`read_options`).
+
+    Raises
+    ------
+    ValueError
+        If ``units`` or ``dt`` contradict the file's, a record of the file is not among
+        ``sources``, or one reads to another PGA than the file's (other units or time
+        step).
+    """
+    recorded = read_options(ds)
+    given = {"units": units, "dt": dt}
+    for key, value in given.items():
+        if recorded and value is not None and not _same_option(recorded[key], value):
+            raise ValueError(f"--{key} {value}: the site file's records were read "
+                             f"{_read_as(recorded)} (leave --{key} out: the file says how)")
+    opts = recorded or given
+    suite = read_suite(sources, **opts)
+    found = [(hashlib.sha256(Path(r.path).read_bytes()).hexdigest() if r.path else None,
+              r.motion.fingerprint(), r) for r in suite]
+    out = []
+    for name, digest, pga in zip(ds["record_name"].values, ds["record_sha256"].values,
+                                 ds["record_pga"].values, strict=True):
+        same = [r for f, m, r in found if digest in (f, m)]
+        if not same:
+            raise ValueError(f"{name}: not among the records given (SHA-256 {digest[:12]}...): "
+                             "give the files the site OAS was computed from")
+        match = [r for r in same if math.isclose(r.motion.pga, pga, rel_tol=1e-9)]
+        if not match:
+            raise ValueError(f"{name}: read {_read_as(opts)} its PGA is "
+                             f"{same[0].motion.pga:.6g} m/s², the site file's "
+                             f"{float(pga):.6g} m/s²" + ("" if recorded else
+                             ": give the --units and --dt it was read with (this file does "
+                             "not record them)"))
+        out.append(match[0])
+    return Suite(tuple(out), csv=suite.csv, notes=suite.notes)
 
 
 def curve_at(ds: xr.Dataset, p: float, curve: str = "envelope") -> tuple[float, bool]:
