@@ -194,6 +194,8 @@ def test_design_system_with_a_hazard_gives_the_largest_scale(folder):
 @pytest.mark.parametrize("extra, msg", [
     (["--hazard", TWO_COLUMN, "--site", "s.nc"], "--hazard needs --records"),
     (["--years", "10"], "--years goes with --hazard"),
+    # typed at its default value: still given (Click's parameter source, not the value)
+    (["--years", "50"], "--years goes with --hazard"),
     (["--extrapolate"], "--extrapolate goes with --hazard"),
 ])
 def test_design_hazard_errors(extra, msg):

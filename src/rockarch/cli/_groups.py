@@ -203,6 +203,13 @@ def sweep_options(opts: dict) -> dict:
 GIVEN_SOURCES = ("COMMANDLINE", "ENVIRONMENT")
 
 
+def typed(ctx: typer.Context, name: str) -> bool:
+    """Whether the user gave option ``name`` (on the command line or by an environment
+    variable), whatever its value: ``--years 50`` is given although 50 is the default."""
+    source = ctx.get_parameter_source(name)
+    return getattr(source, "name", None) in GIVEN_SOURCES
+
+
 def given(ctx: typer.Context, opts: dict, *groups: Group) -> list[str]:
     """The options of ``groups`` given on the command line (or by an environment variable),
     by their flags, whatever their value: Click's parameter source says so (``--system
@@ -226,8 +233,7 @@ def given(ctx: typer.Context, opts: dict, *groups: Group) -> list[str]:
     out = []
     for group in groups:
         for name, _, opt in group:
-            source = ctx.get_parameter_source(name)
-            if getattr(source, "name", None) not in GIVEN_SOURCES:
+            if not typed(ctx, name):
                 continue
             v = opts[name]
             if isinstance(opt, typer.models.ArgumentInfo):

@@ -41,6 +41,7 @@ from rockarch.cli._groups import (
     options,
     sweep_options,
     system_of,
+    typed,
 )
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import SEARCH_HELP, _print_table, ida_scan, ida_sweep_options
@@ -136,6 +137,7 @@ def site_oas(
 @options(RISK, before="save_site")
 @options(SWEEP)
 def design(
+    ctx: typer.Context,
     system: System = typer.Option(None, help="Any structure instead of the arch's "
                                   "replacement catenary: its own ap,min and, with --records, "
                                   "its own IDA (with --site: the equivalent SDOF). Options "
@@ -356,7 +358,7 @@ def _hazard(opt: dict, records: bool):
         if opt[name] not in (None, False) and opt["hazard"] is None:
             raise ValueError(f"--{name.replace('_', '-')} goes with --hazard FILE")
     if opt["hazard"] is None:
-        if opt["years"] != 50.0:
+        if typed(opt["ctx"], "years"):
             raise ValueError("--years goes with --hazard FILE (the probability of collapse "
                              "in N years at the site)")
         return None
