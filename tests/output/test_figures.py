@@ -212,7 +212,7 @@ def test_fragility_axis_in_the_units_of_json_and_g_on_top():
     ax = fig.axes[0]
     assert ax.get_xlabel() == "PGA [m/s²]"
     top = [a for a in ax.child_axes if a.get_xlabel()]
-    assert [a.get_xlabel() for a in top] == ["PGA [g]"]
+    assert [a.get_xlabel() for a in top] == ["PGA [g = 9.80665 m/s²]"]  # which g
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
     assert any(f"θ = {frag.fit.median:.3g} m/s²" in t for t in legend), legend
 
@@ -250,6 +250,7 @@ def test_collapse_figure_of_a_column_is_not_a_sliver_and_its_legend_covers_nothi
 
     fig = collapse_figure(column([(0.3, 1.5), (0.2, 1.0)]))
     ax = fig.axes[0]
+    assert "g (g = 9.81 m/s²; ground accelerating" in ax.get_title()  # the structure's g
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     assert x1 - x0 >= 0.6 * (y1 - y0) * (1 - 1e-9)
     fig.canvas.draw()
