@@ -125,6 +125,10 @@ def test_design_cli_contract_and_offline_report(site_file, tmp_path):
     assert out["pga_safe"] == pytest.approx(out["ratio"] * out["replacement"]["ap_min"])
     assert out["pga_safe_g"] == pytest.approx(out["pga_safe"] / 9.81)
     html = rep.read_text()
+    # the safe PGA in the structure's g, the records' PGA in standard gravity: each says
+    # which (both were "g")
+    assert f"{out['pga_safe_g']:.3f} g</b> (g = 9.81 m/s²)" in html
+    assert "<th>PGA [g = 9.80665 m/s²]</th>" in html
     # self-contained: no external resource, figures inline
     assert not re.search(r'(src|href)\s*=\s*"(https?:|//)', html)
     assert html.count('src="data:image/png;base64,') == 2

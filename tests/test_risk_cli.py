@@ -70,6 +70,9 @@ def test_risk_text(frag_json):
     assert "annual frequency of collapse:" in out
     assert "probability of collapse in 50 years:" in out
     assert "deaggregation by PGA [g]" in out and "half of lambda_c below" in out
+    # the curve's g is standard gravity (its levels are converted with it), not the 9.81 of
+    # design's "= ... g (g = 9.81 m/s²)": the first line in g says which
+    assert "PGA 0.02 … 2 g (g = 9.80665 m/s²), 18 levels" in out.splitlines()[0]
 
 
 def test_inline_fragility_runs_the_ida_in_the_hazards_im(folder, tmp_path):
@@ -237,6 +240,7 @@ def test_risk_plot_x_axis_is_readable(beta):
     res = hz.collapse_rate(curve, frag, extrapolate=True)  # beta 1.5 needs it
     fig = plot_risk(curve, frag, res)
     ax = fig.axes[-1]
+    assert ax.get_xlabel() == "PGA [g = 9.80665 m/s²]"  # the curve's g, standard gravity
     lo, hi = ax.get_xlim()
     assert (lo, hi) == pytest.approx(tuple(v / curve.factor for v in im_range(curve, frag,
                                                                                res)))

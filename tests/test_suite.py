@@ -187,6 +187,7 @@ def test_records_info_text(folder):
     assert res.exit_code == 0, res.output
     assert "El Centro Array #9" in res.stdout and "0.281" in res.stdout
     assert "Vs30" not in res.stdout  # no csv: no metadata columns
+    assert "units: PGA g (g = 9.80665 m/s²), PGV m/s" in res.stdout  # which g: the records'
     shutil.copy(FIXTURE, folder / "_SearchResults.csv")
     res = runner.invoke(app, ["records", "info", str(folder), "--apply-scale"])
     assert res.exit_code == 0, res.output

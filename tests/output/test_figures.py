@@ -177,6 +177,27 @@ def test_a_response_that_slid_shows_its_slip():
     assert rests.sliding_contacts_max == 0 and len(figures.plot_response(rests).axes) == 2
 
 
+def test_the_legend_of_an_overturned_mdof_history_leaves_its_red_x_free():
+    # the history ends at overturning, its red x at the top right corner: the legend sat
+    # there over it (and the x was cut in half by the axes' edge)
+    import rockarch as ra
+    from rockarch import mdof
+    from rockarch.arch import catenary
+
+    a = mdof.arch_assembly(catenary(10.0, 3.0, 0.25), 10)
+    sine = ra.pulse("sine", period=1.0, ap=1.5 * a.ap_min)
+    resp = mdof.simulate(a, sine)
+    assert resp.overturned
+    fig = figures.plot_response(resp, sine)
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    (cross,) = [ln for ln in ax.lines if ln.get_label().startswith("overturned")]
+    xy = ax.transData.transform((cross.get_xdata()[0], cross.get_ydata()[0]))
+    legend = ax.get_legend().get_window_extent()
+    assert not legend.contains(*xy)
+    assert not legend.overlaps(cross.get_window_extent())  # nor any part of the x
+
+
 def test_fragility_axis_in_the_units_of_json_and_g_on_top():
     """--json gives the median in m/s²: the x axis too, with PGA in g on a second axis."""
     import rockarch as ra
@@ -191,7 +212,7 @@ def test_fragility_axis_in_the_units_of_json_and_g_on_top():
     ax = fig.axes[0]
     assert ax.get_xlabel() == "PGA [m/s²]"
     top = [a for a in ax.child_axes if a.get_xlabel()]
-    assert [a.get_xlabel() for a in top] == ["PGA [g]"]
+    assert [a.get_xlabel() for a in top] == ["PGA [g = 9.80665 m/s²]"]  # which g
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
     assert any(f"θ = {frag.fit.median:.3g} m/s²" in t for t in legend), legend
 
@@ -229,6 +250,7 @@ def test_collapse_figure_of_a_column_is_not_a_sliver_and_its_legend_covers_nothi
 
     fig = collapse_figure(column([(0.3, 1.5), (0.2, 1.0)]))
     ax = fig.axes[0]
+    assert "g (g = 9.81 m/s²; ground accelerating" in ax.get_title()  # the structure's g
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     assert x1 - x0 >= 0.6 * (y1 - y0) * (1 - 1e-9)
     fig.canvas.draw()

@@ -247,6 +247,34 @@ def test_bad_assemblies(polys, msg):
         bd.from_polygons(polys)
 
 
+#: A block on a support sloping 0.45 (tan of its angle): it slides off unless μ ≥ 0.45.
+SLOPE = [[0, 0], [2, 0], [2, 0.9]]
+ON_SLOPE = [[0.6, 0.27], [1.4, 0.63], [1.4, 1.03], [0.6, 0.67]]
+
+
+@pytest.mark.parametrize("mu", [0.1, 0.449])
+def test_a_block_that_slides_under_gravity_says_friction_is_the_cause(mu):
+    # it was "the structure cannot stand under gravity: block 0 falls: no equilibrium at
+    # rest", as if it could not stand at all: without sliding it does
+    assert bd.from_polygons([ON_SLOPE], supports=[SLOPE]).ap_min > 0
+    with pytest.raises(ValueError) as err:
+        bd.from_polygons([ON_SLOPE], supports=[SLOPE], mu=mu)
+    msg = str(err.value)
+    assert msg.startswith(f"the structure cannot stand under gravity with friction μ = {mu}: "
+                          "its joints slide and block 0 falls; it stands with μ > ")
+    need = float(msg.rsplit("> ", 1)[1])
+    assert 0.45 <= need <= 0.451  # tan of the slope, rounded up to 3 digits
+    assert bd.from_polygons([ON_SLOPE], supports=[SLOPE], mu=need + 1e-3).ap_min > 0
+
+
+def test_an_arch_that_slides_under_gravity_says_from_which_friction_it_stands():
+    arch = mdof.arch_assembly(circular(10.0, 5.0, 0.6), 12)
+    with pytest.raises(ValueError, match=r"with friction μ = 0\.2: its joints slide and block "
+                       r"\d+ falls \(with \d+ more block\(s\)\); it stands with μ > 0\.38$"):
+        bd.with_friction(arch, 0.2)
+    assert bd.with_friction(arch, 0.38).ap_min > 0  # the value it names
+
+
 def test_json_assembly_with_contact_friction():
     data = {"name": "two", "friction": 0.6,
             "blocks": [{"polygon": _rect(0, 0, 1, 1), "density": 2.0, "name": "base"},

@@ -21,6 +21,7 @@ from rockarch.motion import intensity, synthetic
 from rockarch.motion.suite import describe, read_suite
 from rockarch.motion.velocity_pulse import check_method
 from rockarch.output import check_outputs
+from rockarch.output.tables import g_label
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                           help="Record suites: metadata and intensity measures.")
@@ -104,7 +105,8 @@ def info(
     typer.echo(f"pulse: class of the {source} indicator; flags: late (the pulse arrives "
                "late)" + (", pgv<30 (PGV <= 30 cm/s)" if method == "2007" else "")
                + "; pulse-like = class pulse and no flag")
-    typer.echo(f"units: PGV m/s, PGD m, Ia m/s, D5-95 s, Tm s, Tp s ({source} pulse "
+    typer.echo(f"units: PGA g ({g_label(G_STANDARD)}), PGV m/s, PGD m, Ia m/s, D5-95 s, "
+               f"Tm s, Tp s ({source} pulse "
                "period)" + ("; Rrup km, Vs30 m/s, SF csv scale factor" if meta else "")
                + "; Sa(T) in --json")
     if plot is not None:

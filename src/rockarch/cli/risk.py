@@ -14,7 +14,7 @@ from rockarch.cli._common import guarded
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, given, options
 from rockarch.cli.fragility import IDA, run_ida
 from rockarch.output import check_outputs
-from rockarch.output.tables import unit_label
+from rockarch.output.tables import standard_g, unit_label
 from rockarch.risk import fragility as fr
 from rockarch.risk import hazard as hz
 
@@ -130,8 +130,10 @@ def print_risk(curve, frag, result, described: str) -> None:
     f, units, name = curve.factor, unit_label(curve.units), curve.label
     how = ("annual rates" if curve.investigation_time is None else
            f"OpenQuake poe in {curve.investigation_time:g} years -> rates")
+    std = standard_g(curve.units)  # which g the values in g divide by
     typer.echo(f"hazard: {Path(curve.source).name}: {name} {curve.x[0] / f:.4g} … "
-               f"{curve.x[-1] / f:.4g} {units}, {len(curve.x)} levels ({how})")
+               f"{curve.x[-1] / f:.4g} {units}{f' ({std})' if std else ''}, "
+               f"{len(curve.x)} levels ({how})")
     typer.echo(f"fragility: {described}: median {name} {frag.median / f:.4g} {units}, "
                f"beta {frag.beta:.3f}")
     typer.echo(f"annual frequency of collapse: {result.annual_rate:.3g} /yr (return period "

@@ -108,11 +108,9 @@ def _verdict(s: dict) -> None:
                        "part away from rest or a block slid off its supports; docs/mdof.md, "
                        "Collapse criterion)")
     else:
-        beyond = ("; rotated past the reference angle yet not collapsed: the collapse test "
-                  "decides (docs/mdof.md, Collapse criterion)"
-                  if s["max_rotation_ratio"] >= 1.0 else "")
         typer.echo(f"safe: max rotation / its overturning value = "
-                   f"{s['max_rotation_ratio']:.4f}, {_count(s['impacts'], 'impact')}{beyond}")
+                   f"{s['max_rotation_ratio']:.4f}, {_count(s['impacts'], 'impact')}"
+                   f"{_beyond(s['max_rotation_ratio'], '; ')}")
     if s.get("sliding_contacts_max") and s["max_slip"] < SLIP_NOISE:
         typer.echo(f"sliding: none beyond {1e6 * SLIP_NOISE:g} µm (largest slip "
                    f"{s['max_slip']:.2g} m: the contact solve's tolerance, not a slide)")
@@ -127,10 +125,19 @@ def _verdict(s: dict) -> None:
                    "solver's tolerance, even as substeps (docs/theory.md §9)")
 
 
+def _beyond(ratio: float, sep: str) -> str:
+    """What a safe run's ratio of 1 or more means, after ``sep`` (docs/mdof.md, "Step check
+    of one history"): a block turned past the reference angle, and gravity still restores
+    the structure; '' below 1."""
+    return (f"{sep}rotated past the reference angle yet not collapsed: the collapse test "
+            "decides (docs/mdof.md, Collapse criterion)" if ratio >= 1.0 else "")
+
+
 def _step_note(half: dict) -> str:
     """The line saying that a history changes at h/2 (:func:`rockarch.mdof.simulate`)."""
+    r = half["max_rotation_ratio"]
     got = (f"OVERTURNED at t = {half['t_overturn']:.4f} s" if half["overturned"] else
-           f"safe, max rotation / its overturning value = {half['max_rotation_ratio']:.4f}")
+           f"safe, max rotation / its overturning value = {r:.4f}{_beyond(r, ', ')}")
     return (f"note: sensitive to the time step: at h/2 (--h-factor {half['h_factor']:g}) "
             f"{got}; read verdicts from maps or suites (docs/mdof.md, Convergence on "
             "records)")

@@ -49,6 +49,7 @@ from rockarch.cli.risk import RISK, check_years, hazard_of
 from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system, site_risk, smallest_thickness
 from rockarch.output import check_outputs, staged
+from rockarch.output.tables import g_label, standard_g
 from rockarch.risk import fragility as fr
 from rockarch.risk.record_scan import SEARCH_STEP
 from rockarch.spectra import characteristic as charsite
@@ -386,8 +387,10 @@ def _conditional(opt: dict) -> float | None:
 
 def _print_risk(risk) -> None:
     r, c = risk.result, risk.hazard
+    std = standard_g(c.units)
     typer.echo(f"risk at the site of {Path(c.source).name} ({c.label} {c.x[0] / c.factor:.4g} … "
-               f"{c.x[-1] / c.factor:.4g} {c.units}): annual frequency of collapse "
+               f"{c.x[-1] / c.factor:.4g} {c.units}{', ' + std if std else ''}): annual "
+               "frequency of collapse "
                f"{r.annual_rate:.3g} /yr, P(collapse in {r.years:g} years) = "
                f"{r.probability:.3g}")
     if risk.target is not None:
@@ -547,14 +550,15 @@ def _design_caveats(res, ida, curve: str, site_ds) -> list[str]:
 
 
 def _safe_pga(res, g: float) -> str:
-    """'ap/ap,min = R -> safe PGA P m/s² = P/g g' of a design result; '>=' where the site
-    curve reaches the top of the ratio range (a lower bound)."""
+    """'ap/ap,min = R -> safe PGA P m/s² = P/g g (g = G m/s²)' of a design result; '>='
+    where the site curve reaches the top of the ratio range (a lower bound)."""
     low = res.ratio_is_lower_bound
     islands = (f" (the records' first collapses at p, collapse islands searched; the site "
                f"OAS grid reads {res.ratio_grid:.4f})" if getattr(res, "islands_lower", False)
                else "")
     return (f"ap/ap,min {'>=' if low else '='} {res.ratio:.4f}{islands} -> safe PGA "
-            f"{'>= ' if low else ''}{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g")
+            f"{'>= ' if low else ''}{res.pga_safe:.3f} m/s² = {res.pga_safe / g:.3f} g "
+            f"({g_label(g)})")
 
 
 def _print_system_design(res) -> None:

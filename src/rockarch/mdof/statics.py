@@ -167,6 +167,63 @@ def _not_standing(a_eq, b_eq, bounds, a_ub, b_ub, centroid, names) -> str:
     return f"{names[i]} falls{more}: no equilibrium at rest"
 
 
+def _stands(a_eq, b_eq, bounds, mu) -> bool:
+    """Whether (10.2)–(10.3) have a solution at λ = 0: the structure carries its weight."""
+    a_ub, b_ub = _friction(mu)
+    ub = (a_ub, b_ub) if a_ub.shape[0] else (None, None)
+    res = linprog(np.zeros(a_eq.shape[1]), A_ub=ub[0], b_ub=ub[1], A_eq=a_eq, b_eq=b_eq,
+                  bounds=list(bounds[:-1]) + [(0.0, 0.0)], method="highs")
+    return res.status == 0
+
+
+def _least_friction(a_eq, b_eq, bounds, mu) -> float | None:
+    """The friction coefficient, the same at every joint, from which a structure that cannot
+    stand with ``mu`` stands: rounded up to 3 significant digits, where the LP at λ = 0 is
+    feasible (the cone only grows with μ: it stands with every larger one). None if it
+    cannot stand without sliding either (friction is not the cause); inf if it needs more
+    than the largest accepted coefficient."""
+    from rockarch.mdof.builders import MU_MAX  # (builders imports this module)
+
+    if np.all(np.isinf(mu)) or not _stands(a_eq, b_eq, bounds, np.full(len(mu), np.inf)):
+        return None
+    lo = float(np.min(mu))  # the least coefficient given: it does not stand with that
+    hi = lo
+    while True:  # double up to a coefficient with which it stands
+        hi = min(2.0 * hi, MU_MAX)
+        if _stands(a_eq, b_eq, bounds, np.full(len(mu), hi)):
+            break
+        if hi >= MU_MAX:
+            return math.inf
+        lo = hi
+    while hi - lo > 1e-4 * hi:  # then bisect, below the 3 digits shown
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if _stands(a_eq, b_eq, bounds, np.full(len(mu), mid)) else (mid, hi)
+    e = 10.0 ** (math.floor(math.log10(hi)) - 2)
+    return math.ceil(hi / e - 1e-9) * e
+
+
+def _friction_text(mu) -> str:
+    """'μ = 0.1', 'μ = 0.1..0.4', with '(no sliding elsewhere)' if some joints never slide."""
+    fin = mu[np.isfinite(mu)]
+    lo, hi = float(fin.min()), float(fin.max())
+    return (f"μ = {lo:g}" + ("" if hi == lo else f"..{hi:g}")
+            + ("" if fin.size == mu.size else " (no sliding elsewhere)"))
+
+
+def _cannot_stand(a_eq, b_eq, bounds, a_ub, b_ub, centroid, names, mu) -> str:
+    """The one-line error of a structure whose equilibrium at rest (λ = 0) has no solution,
+    saying whether its friction is the cause and from which μ it stands."""
+    who = _not_standing(a_eq, b_eq, bounds, a_ub, b_ub, centroid, names)
+    need = _least_friction(a_eq, b_eq, bounds, mu)
+    if need is None:
+        return f"the structure cannot stand under gravity: {who}"
+    uniform = np.all(mu == mu[0])
+    fix = ("it stands only without sliding" if math.isinf(need)
+           else f"it stands with μ > {need:.3g}" + ("" if uniform else " at every joint"))
+    return (f"the structure cannot stand under gravity with friction {_friction_text(mu)}: "
+            f"its joints slide and {who.removesuffix(': no equilibrium at rest')}; {fix}")
+
+
 def _mechanism(dual, mass, inertia, centroid, corners, normal, body_a, body_b, direction):
     vel = np.asarray(dual, dtype=float).reshape(len(mass), 3)
     if np.sum(-direction * mass * vel[:, 0]) < 0:  # the inertia load does positive work
@@ -247,7 +304,8 @@ def limit_analysis(mass, inertia, centroid, corners, normal, body_a, body_b, mu=
     Raises
     ------
     ValueError
-        If the assembly cannot stand under gravity alone (naming the block).
+        If the assembly cannot stand under gravity alone (naming the block; if it stands
+        without sliding, saying that its joints slide and from which μ it stands).
     """
     if friction not in ("nonassociative", "associative"):
         raise ValueError(f"friction must be 'nonassociative' or 'associative', got {friction!r}")
@@ -308,9 +366,8 @@ def _solve(mass, inertia, centroid, corners, normal, body_a, body_b, mu, *, g: f
                   method="highs")
     if res.status == 2:
         names = names if names is not None else [f"block {i}" for i in range(nb_)]
-        why = _not_standing(a_eq, b_eq, bounds, a_ub, b_ub, np.asarray(centroid, float),
-                            names)
-        raise ValueError(f"the structure cannot stand under gravity: {why}")
+        raise ValueError(_cannot_stand(a_eq, b_eq, bounds, a_ub, b_ub,
+                                       np.asarray(centroid, float), names, mu))
     if res.status != 0:
         raise ValueError(f"the collapse LP failed: {res.message}")
     geom = (mass, np.asarray(inertia, float), np.asarray(centroid, float),

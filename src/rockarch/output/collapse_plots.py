@@ -16,6 +16,7 @@ from matplotlib.patches import Polygon
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.statics import Collapse, collapse
 from rockarch.output.figures import new_figure, save_figure
+from rockarch.output.tables import g_label
 
 
 def _moved(poly: np.ndarray, centre: np.ndarray, vel: np.ndarray, s: float) -> np.ndarray:
@@ -75,7 +76,8 @@ def collapse_figure(assembly: Assembly, mech: Collapse | None = None):
     ax.set_ylabel("y [m]")
     d = "+x" if mech.direction > 0 else "-x"
     ax.set_title(f"{a.name}\ncollapse at ap,min = {mech.ap_min:.4g} m/s² = "
-                 f"{mech.lambda_:.4g} g (ground accelerating {d})", fontsize=9)
+                 f"{mech.lambda_:.4g} g ({g_label(a.g)}; ground accelerating {d})",
+                 fontsize=9)
     if len(opened) or mech.sliding.any():  # below the axes: it covers no block
         fig.legend(loc="outside lower center", ncol=2, fontsize=8, frameon=False)
     return fig

@@ -160,14 +160,17 @@ def plot_response(resp, motion=None) -> Figure:
     if resp.impacts and hasattr(resp, "impact_times"):
         ax1.plot(resp.impact_times, np.zeros_like(resp.impact_times), "|", color="0.4", ms=6,
                  label=f"impacts ({resp.impacts})")
-    if resp.overturned:
+    t_end = max(resp.t_end, t[-1])
+    if resp.overturned:  # drawn whole where it ends the axes (a history stops at overturning)
         ax1.plot([resp.t_overturn], [np.interp(resp.t_overturn, t, x)], "rx", ms=9,
-                 label=f"overturned at t = {resp.t_overturn:.3f} s")
+                 clip_on=False, label=f"overturned at t = {resp.t_overturn:.3f} s")
     ax1.set_ylabel(ylabel)
     ax1.set_title(title, fontsize=9)
     if ax1.get_legend_handles_labels()[0]:  # an MDOF response has impacts but no times
-        ax1.legend(loc="upper right", fontsize=8)
-    t_end = max(resp.t_end, t[-1])
+        # in the upper corner away from the red x (at the top right when the history ends
+        # at overturning, the legend's corner before)
+        right = resp.overturned and resp.t_overturn > 0.5 * t_end
+        ax1.legend(loc="upper left" if right else "upper right", fontsize=8)
     if motion is not None:
         tt = np.concatenate([motion.t, [motion.duration, t_end]])
         aa = np.concatenate([motion.a, [0.0, 0.0]])

@@ -8,6 +8,7 @@ from rockarch.core.constants import G_STANDARD
 from rockarch.output.figures import subplots
 from rockarch.output.html import inline_figure, key_value_table
 from rockarch.output.suite_plots import plot_spectra
+from rockarch.output.tables import g_label
 from rockarch.risk.fragility import Fragility
 
 #: Units of each intensity measure in g (the CLI's --im-range), by which it is divided.
@@ -74,7 +75,7 @@ def plot_fragility(frag: Fragility, im_range=None):
         top.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
         top.xaxis.set_major_formatter(ScalarFormatter())
         top.xaxis.set_minor_formatter(NullFormatter())
-        top.set_xlabel(name.replace("[m/s²]", "[g]"), fontsize=9)
+        top.set_xlabel(name.replace("[m/s²]", f"[{g_label(G_STANDARD)}]"), fontsize=9)
     ax.set_title(f"fragility of {r.system}, p = {r.p:g} 1/s ({n} records)", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)

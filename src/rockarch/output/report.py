@@ -17,6 +17,7 @@ from rockarch.design import DesignResult, SystemDesign
 from rockarch.output.arch_plots import design_arch_figure
 from rockarch.output.figures import new_figure
 from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
+from rockarch.output.tables import g_label
 from rockarch.spectra.site import read_with
 
 ASSUMPTIONS = [
@@ -91,7 +92,7 @@ def _records_table(site_ds: xr.Dataset) -> str:
     """The site's records: name, PGA, how each was read (files that record it) and the
     SHA-256 of its file."""
     cols = [site_ds["record_name"].values, site_ds["record_pga"].values / G_STANDARD]
-    head = ["record", "PGA [g]"]
+    head = ["record", f"PGA [{g_label(G_STANDARD)}]"]
     if "record_units" in site_ds and "record_dt" in site_ds:  # older files do not say
         head.append("read with")
         cols.append([read_as(str(u), float(d)) for u, d in zip(
@@ -128,7 +129,7 @@ def report_html(result: DesignResult, site_ds: xr.Dataset, *, command: str, inpu
 <p>rockarch {__version__}, {stamp()}.
 Method: paper Sect. 9 (replacement catenary arch, slender-block OAS of the site).</p>
 <div class="result">Largest safe peak ground acceleration:
-<b>{result.pga_safe:.3f} m/s² = {result.pga_safe / g:.3f} g</b><br>
+<b>{result.pga_safe:.3f} m/s² = {result.pga_safe / g:.3f} g</b> ({g_label(g)})<br>
 ap/ap,min = {result.ratio:.4f}{lower} {islands}at
 p = {c.p:.4f} 1/s; ap,min = {c.ap_min:.4f} m/s² ({result.rule} thickness).
 {"Below this PGA the arch may move but does not collapse." if not caveats else
@@ -220,7 +221,7 @@ def system_report_html(result: SystemDesign, *, command: str, suite=None,
     body = f"""<h1>Overturning design check of {escape(r.system)}</h1>
 <p>rockarch {__version__}, {stamp()}. Method: {escape(how)}, docs/theory.md §11.4.</p>
 <div class="result">Largest safe peak ground acceleration:
-<b>{r.pga_safe:.3f} m/s² = {r.pga_safe / g:.3f} g</b><br>
+<b>{r.pga_safe:.3f} m/s² = {r.pga_safe / g:.3f} g</b> ({g_label(g)})<br>
 ap/ap,min = {r.ratio:.4f}{lower} ({escape(curve)}) at p = {r.p:.4f} 1/s;
 ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.
 {"" if not caveats else
@@ -239,7 +240,7 @@ ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.
             body += fragility_html(frag, r.summary, suite, of=escape(r.system))
     if suite is not None:
         body += "<h2>Records</h2>\n" + table(
-            ["record", "PGA [g]", "read with", "SHA-256 of the file"],
+            ["record", f"PGA [{g_label(G_STANDARD)}]", "read with", "SHA-256 of the file"],
             [(rec.name, f"{rec.motion.pga / G_STANDARD:.4f}", read_as(*read_with(rec.motion)),
               hashlib.sha256(Path(rec.path).read_bytes()).hexdigest() if rec.path else "")
              for rec in suite])

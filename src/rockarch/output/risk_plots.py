@@ -7,7 +7,7 @@ import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from rockarch.output.figures import subplots
-from rockarch.output.tables import unit_label
+from rockarch.output.tables import standard_g, unit_label
 from rockarch.risk.hazard import FragilityCurve, HazardCurve, RiskResult
 
 #: Standard normal quantile of 0.999: the fragility is drawn from P = 0.001 to 0.999.
@@ -103,7 +103,7 @@ def plot_risk(hazard: HazardCurve, frag: FragilityCurve, res: RiskResult, *,
     ax.legend(loc="upper left", fontsize=8)
     _im_ticks(ax, lo / f, hi / f)
     ax.set_xlim(lo / f, hi / f)
-    ax.set_xlabel(f"{hazard.label} [{units}]")
+    ax.set_xlabel(f"{hazard.label} [{standard_g(hazard.units) or units}]")
     for a in axes:
         a.grid(True, which="both", alpha=0.3)
     axes[0].set_title(title or f"λ_c = {res.annual_rate:.3g}/yr, P(collapse in "

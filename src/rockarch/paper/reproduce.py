@@ -9,8 +9,10 @@ from collections.abc import Callable
 from pathlib import Path
 
 from rockarch.core import __version__
+from rockarch.core.constants import G
 from rockarch.output.html import stamp, write_page
 from rockarch.output.html import table as _table
+from rockarch.output.tables import g_label
 from rockarch.paper import background, reference
 from rockarch.paper import results as paper
 
@@ -189,7 +191,7 @@ def reproduce(out, *, quick: bool = False,
               f"{ref9['pga_safe']}",
               f"{s9['pga_with_paper_ratio']:.3f}"],
              ["safe PGA at the El Centro site", "–",
-              f"{s9['pga_safe']:.3f} m/s² = {s9['pga_safe_g']:.3f} g"]])
+              f"{s9['pga_safe']:.3f} m/s² = {s9['pga_safe_g']:.3f} g ({g_label(G)})"]])
         + "<p><a href='design_report.html'>design report</a>; rerun: <code>"
         + html.escape(s9["command"]) + "</code></p>")
     secs = time.perf_counter() - t_start
