@@ -100,11 +100,12 @@ LMGC90_VENV := .venv-lmgc90
 validate: $(VENV)/.installed
 	-(apt-get update -qq && apt-get install -y -qq python3-siconos) >/dev/null 2>&1 \
 		|| echo "validate: could not install python3-siconos (not root or no apt)"
-	$(BIN)/python validation/siconos_compare.py
 	-(test -x $(LMGC90_VENV)/bin/python || $(PYTHON) -m venv $(LMGC90_VENV)) \
 		&& $(LMGC90_VENV)/bin/python -m pip install --quiet "compas-lmgc90==0.1.11" \
 		>/dev/null 2>&1 || echo "validate: could not install compas-lmgc90 (no wheel or no network)"
-	$(BIN)/python validation/lmgc90_compare.py --python $(LMGC90_VENV)/bin/python
+	s=0; $(BIN)/python validation/siconos_compare.py || s=1; \
+		$(BIN)/python validation/lmgc90_compare.py --python $(LMGC90_VENV)/bin/python || s=1; \
+		exit $$s
 
 clean:
 	rm -rf $(VENV) $(LMGC90_VENV) .venv-oldest .venv-oldest.lock $(OUT) build site src/*.egg-info
