@@ -16,12 +16,11 @@ from rockarch.cli._common import (
     guarded,
     print_json,
 )
-from rockarch.core.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD, g_label
 from rockarch.motion import intensity, synthetic
 from rockarch.motion.suite import describe, read_suite
 from rockarch.motion.velocity_pulse import check_method
 from rockarch.output import check_outputs
-from rockarch.output.tables import g_label
 
 records_app = typer.Typer(no_args_is_help=True, rich_markup_mode=None,
                           help="Record suites: metadata and intensity measures.")

@@ -13,8 +13,9 @@ from rockarch.cli._app import app
 from rockarch.cli._common import guarded
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, given, options
 from rockarch.cli.fragility import IDA, run_ida
+from rockarch.core.constants import standard_g
 from rockarch.output import check_outputs
-from rockarch.output.tables import standard_g, unit_label
+from rockarch.output.tables import unit_label
 from rockarch.risk import fragility as fr
 from rockarch.risk import hazard as hz
 

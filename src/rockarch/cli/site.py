@@ -46,10 +46,10 @@ from rockarch.cli._groups import (
 from rockarch.cli._sweep import open_sweep
 from rockarch.cli.fragility import SEARCH_HELP, _print_table, ida_scan, ida_sweep_options
 from rockarch.cli.risk import RISK, check_years, hazard_of
+from rockarch.core.constants import g_label, standard_g
 from rockarch.core.validate import in_range, positive
 from rockarch.design import design_check, design_system, site_risk, smallest_thickness
 from rockarch.output import check_outputs, staged
-from rockarch.output.tables import g_label, standard_g
 from rockarch.risk import fragility as fr
 from rockarch.risk.record_scan import SEARCH_STEP
 from rockarch.spectra import characteristic as charsite

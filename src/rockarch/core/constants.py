@@ -33,3 +33,36 @@ GAP_TOL = 1e-4
 
 #: Default bisection tolerance of an OAS boundary (ratio units).
 OAS_TOL = 1e-3
+
+
+def g_label(g: float) -> str:
+    """Which g an acceleration shown in g was divided by.
+
+    Parameters
+    ----------
+    g : float
+        A structure's own g (default :data:`G`, docs/theory.md §0) or :data:`G_STANDARD`
+        (records and hazard curves in units of g are converted with it).
+
+    Returns
+    -------
+    str
+        ``"g = 9.81 m/s²"``.
+    """
+    return f"g = {g:g} m/s²"
+
+
+def standard_g(units: str) -> str:
+    """:func:`g_label` of standard gravity where a file's units are g.
+
+    Parameters
+    ----------
+    units : str
+        Units as a hazard curve or a record writes them (``"g"``, ``"m/s2"``).
+
+    Returns
+    -------
+    str
+        ``"g = 9.80665 m/s²"`` for ``"g"``, else ``""``.
+    """
+    return g_label(G_STANDARD) if units.strip() == "g" else ""

@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 from matplotlib.patches import Polygon
 
+from rockarch.core.constants import g_label
 from rockarch.mdof.assembly import Assembly
 from rockarch.mdof.statics import Collapse, collapse
 from rockarch.output.figures import new_figure, save_figure
-from rockarch.output.tables import g_label
 
 
 def _moved(poly: np.ndarray, centre: np.ndarray, vel: np.ndarray, s: float) -> np.ndarray:

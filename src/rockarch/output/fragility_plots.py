@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from rockarch.core.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD, g_label
 from rockarch.output.figures import subplots
 from rockarch.output.html import inline_figure, key_value_table
 from rockarch.output.suite_plots import plot_spectra
-from rockarch.output.tables import g_label
 from rockarch.risk.fragility import Fragility
 
 #: Units of each intensity measure in g (the CLI's --im-range), by which it is divided.

@@ -11,13 +11,12 @@ import numpy as np
 import xarray as xr
 
 from rockarch.core import __version__
-from rockarch.core.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD, g_label
 from rockarch.core.paths import write_text
 from rockarch.design import DesignResult, SystemDesign
 from rockarch.output.arch_plots import design_arch_figure
 from rockarch.output.figures import new_figure
 from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
-from rockarch.output.tables import g_label
 from rockarch.spectra.site import read_with
 
 ASSUMPTIONS = [

@@ -6,8 +6,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
+from rockarch.core.constants import standard_g
 from rockarch.output.figures import subplots
-from rockarch.output.tables import standard_g, unit_label
+from rockarch.output.tables import unit_label
 from rockarch.risk.hazard import FragilityCurve, HazardCurve, RiskResult
 
 #: Standard normal quantile of 0.999: the fragility is drawn from P = 0.001 to 0.999.

@@ -9,10 +9,9 @@ from collections.abc import Callable
 from pathlib import Path
 
 from rockarch.core import __version__
-from rockarch.core.constants import G
+from rockarch.core.constants import G, g_label
 from rockarch.output.html import stamp, write_page
 from rockarch.output.html import table as _table
-from rockarch.output.tables import g_label
 from rockarch.paper import background, reference
 from rockarch.paper import results as paper
 
