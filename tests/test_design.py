@@ -264,6 +264,11 @@ def test_records_with_wrong_units_are_rejected(tmp_path):
                               str(tmp_path / "s.nc")])
     assert res.exit_code == 2 and "wrong units" in res.stderr
     assert not (tmp_path / "s.nc").exists()
+    # the PGA in g says which g: the records' (standard gravity), in the error and the
+    # reader's warning before it
+    err = res.stderr.splitlines()
+    assert "(25.5 g, g = 9.80665 m/s²) is not plausible" in err[-1], res.stderr
+    assert any("= 25.5 g (g = 9.80665 m/s²) is not plausible" in e for e in err[:-1])
 
 
 def test_design_cli_lower_bound_is_the_band(site_file):

@@ -71,6 +71,12 @@ def _check_contract(folder, tmp_path):
     assert out["ci"] == {}
 
 
+def test_im_range_help_says_which_g():
+    # --im-range is in g of the records (standard gravity), as the figure's top axis
+    res = runner.invoke(app, ["fragility", "--help"])
+    assert "LO,HI in g (pga, sa; g = 9.80665 m/s²)" in " ".join(res.stdout.split())
+
+
 @pytest.mark.parametrize("extra, msg", [
     (["--im", "sa"], "--im sa needs --period"),
     (["--im", "pgd"], "'pgd' is not one of 'pga', 'pgv', 'sa', 'pga_norm', 'pgv_norm', "

@@ -209,6 +209,7 @@ def test_a_curve_that_does_not_cover_the_fragility_is_refused_with_its_bound():
     res = hz.collapse_rate(inner, frag, extrapolate=True)
     assert res.extrapolated and res.extrapolated_share > 0.3
     assert f"{100 * res.extrapolated_share:.1f} %" in str(err.value)
+    assert " g, g = 9.80665 m/s²) does not cover" in str(err.value)  # which g: the curve's
     assert f"{res.lower_bound:.3g}/yr" in str(err.value)
     # Eq. (11.40): the bound without extrapolation is below the rate of the full curve
     # (which the short one is a piece of); the extrapolation is an estimate, not a bound

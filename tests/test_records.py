@@ -158,8 +158,9 @@ def test_two_column_with_a_byte_order_mark_keeps_its_first_sample(tmp_path):
 def test_two_column_without_units_warns_on_an_implausible_pga(tmp_path):
     """A file in mm/s² read as m/s² (PGA 3e5 m/s²): one warning naming the units to give."""
     f = _write(tmp_path, "mm.txt", "0 1e5\n0.01 2e5\n0.02 -3e5\n")
-    with pytest.warns(UnitsWarning, match="not plausible: wrong units"):
+    with pytest.warns(UnitsWarning, match="not plausible: wrong units") as w:
         read_record(f)
+    assert "3e+05 m/s² = 3.06e+04 g (g = 9.80665 m/s²) is not" in str(w[0].message)
     assert read_record(f, units="mm/s2").pga == pytest.approx(300.0)
 
 

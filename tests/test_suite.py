@@ -118,6 +118,7 @@ def test_two_column_records_in_a_folder_and_a_file_list(tmp_path):
     tiny = suite.read_suite([tmp_path / "a.txt", tmp_path / "c.txt"], units="cm/s2")
     assert [n.split(":")[0] for n in tiny.notes] == ["c.txt"]
     assert "not plausible" in tiny.notes[0]
+    assert "PGA = 2.04e-05 g (g = 9.80665 m/s²) is" in tiny.notes[0]  # the records' g
     # site-oas reads folders through the same expansion
     assert [p.name for p in site.record_paths([tmp_path])] == ["a.txt", "b.dat", "c.txt"]
 

@@ -3,6 +3,7 @@
 import importlib
 import json
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -108,6 +109,10 @@ def test_ramp_json_gives_the_ramps_end(monkeypatch):
     assert js["ramp_onsets"] == {"+x": None, "-x": 8.628} and js["ramp_end"] == 11.57
     assert js["ap_ramp"] == 8.628 and js["ramp_direction"] == -1
     assert "+x stands up to 11.57 m/s²" in runner.invoke(app, args).stdout
+    # the rate is in the structure's g (--g), and says so
+    monkeypatch.setattr(ramp, "ramp_onset", lambda a, **kw: replace(onset, rate=0.1 * a.g))
+    text = runner.invoke(app, [*args, "--g", "9.8"]).stdout
+    assert "ramp 0.1 g/s (g = 9.8 m/s²) from rest: a mechanism starts at 8.628" in text
 
 
 def test_oas_mdof_contract():

@@ -17,6 +17,7 @@ from rockarch.cli._app import app
 from rockarch.cli._common import echo_err, guarded, read_records
 from rockarch.cli._groups import SWEEP, SYSTEM, Group, options, sweep_options, system_of
 from rockarch.cli._sweep import open_sweep
+from rockarch.core.constants import G_STANDARD, g_label
 from rockarch.output import check_outputs
 from rockarch.output.tables import unit_label
 from rockarch.risk import fragility as fr
@@ -161,8 +162,8 @@ def fragility(
                           "each on the same IDA (Sa at T = 2 pi/p unless --period)."),
     period: float = typer.Option(None, help="Period of Sa(T) [s] (--im sa, --im all)."),
     im_range: str = typer.Option(None, help="IM range of the curve and band: LO,HI in g "
-                                 "(pga, sa) or m/s (pgv); default the records' range "
-                                 "widened by 2."),
+                                 f"(pga, sa; {g_label(G_STANDARD)}) or m/s (pgv); default "
+                                 "the records' range widened by 2."),
     bootstrap: int = typer.Option(fr.N_BOOTSTRAP, help="Bootstrap resamples of the band "
                                   "(0: none)."),
     level: float = typer.Option(0.95, help="Confidence level of the band."),

@@ -27,6 +27,7 @@ from rockarch.cli._common import (
     value,
 )
 from rockarch.cli._groups import MDOF, MDOF_STEP, MOTION, RATIO, RUN, SDOF, options, pick
+from rockarch.core.constants import g_label
 from rockarch.core.validate import positive
 from rockarch.mdof.simulate import STEP_CHECK_MAX_BLOCKS
 from rockarch.output import check_outputs
@@ -274,11 +275,12 @@ def _with_ramp(a, header: str, extra: dict) -> tuple[str, dict]:
         other = r.onsets[-r.direction]
         rest = (f"{side[-r.direction]} at {other:.4g} m/s²" if math.isfinite(other) else
                 f"{side[-r.direction]} stands up to {r.end:.4g} m/s²")
-        line = (f"ramp {r.rate / a.g:g} g/s from rest: a mechanism starts at "
+        line = (f"ramp {r.rate / a.g:g} g/s ({g_label(a.g)}) from rest: a mechanism starts at "
                 f"{r.ap_onset:.4g} m/s² = {r.ap_onset / a.ap_min:.4g} ap,min (ground to "
                 f"{side[r.direction]}; {rest}); ap,min is the lowest static solution")
     else:
-        line = f"ramp {r.rate / a.g:g} g/s from rest: nothing moves up to {r.end:.4g} m/s²"
+        line = (f"ramp {r.rate / a.g:g} g/s ({g_label(a.g)}) from rest: nothing moves up to "
+                f"{r.end:.4g} m/s²")
     return f"{header}\n{line}", {**extra, "ap_ramp": r.ap_onset,
                                  "ramp_direction": r.direction,
                                  "ramp_onsets": {side[k]: v for k, v in r.onsets.items()},
@@ -296,8 +298,8 @@ def simulate_mdof(
                                    "mechanism (docs/theory.md §10)."),
     ramp: bool = typer.Option(False, "--ramp", help="Also report the ground acceleration at "
                               "which the engine starts a mechanism under a slow ramp (0.1 "
-                              "g/s, from rest, both directions), beside ap,min: walls with "
-                              "high friction stand above it (docs/assemblies.md)."),
+                              "g/s, g = --g, from rest, both directions), beside ap,min: "
+                              "walls with high friction stand above it (docs/assemblies.md)."),
     step_check: bool = typer.Option(None, "--step-check/--no-step-check", help="Run the "
                                     "history again at h/2 and say if the verdict changes "
                                     "(or the largest rotation by more than 0.1 of its "

@@ -23,7 +23,7 @@ import numpy as np
 
 #: Standard gravity [m/s²] used to convert records given in units of g.
 from rockarch.core import limits
-from rockarch.core.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD, g_label
 from rockarch.core.validate import number, show
 from rockarch.motion.signals import GroundMotion
 
@@ -1044,8 +1044,8 @@ def read_record(path: str | Path, *, units: str | None = None,
     elif units is None and motion.pga > MAX_PLAUSIBLE_PGA:
         warnings.warn(UnitsWarning(
             f"{path.name}: read as m/s² (no units given), its PGA {motion.pga:.4g} m/s² = "
-            f"{motion.pga / G_STANDARD:.3g} g is not plausible: wrong units? (--units cm/s2, "
-            "mm/s2 or g)"), stacklevel=2)
+            f"{motion.pga / G_STANDARD:.3g} g ({g_label(G_STANDARD)}) is not plausible: wrong "
+            "units? (--units cm/s2, mm/s2 or g)"), stacklevel=2)
     return motion
 
 

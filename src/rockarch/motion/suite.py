@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from rockarch.core import limits
-from rockarch.core.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD, g_label
 from rockarch.core.paths import atomic_write
 from rockarch.motion import intensity
 from rockarch.motion.records import (
@@ -598,8 +598,9 @@ def read_suite(sources, *, units: str | None = None, apply_scale: bool = False,
         seen.add(name)
         lo, hi = PGA_RANGE
         if not lo <= motion.pga <= hi:
-            notes.append(f"{name}: PGA = {motion.pga / G_STANDARD:.3g} g is not plausible: "
-                         f"wrong units? ({text} files: --units g, m/s2 or cm/s2)")
+            notes.append(f"{name}: PGA = {motion.pga / G_STANDARD:.3g} g "
+                         f"({g_label(G_STANDARD)}) is not plausible: wrong units? ({text} "
+                         "files: --units g, m/s2 or cm/s2)")
     if g_like:
         notes.append(f"{len(g_like)} {text} record(s) read as m/s² without --units have "
                      f"peaks of at most {G_LIKE_PEAK:g}, plausible in g too ({g_like[0]}"

@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rockarch.core.constants import G_STANDARD
+from rockarch.core.constants import G_STANDARD, standard_g
 
 #: Intensity measures a hazard curve may be given in (those of the IDA's :data:`IMS` that
 #: hazard models compute): PGA and Sa(T) [m/s²], PGV [m/s].
@@ -556,8 +556,10 @@ def _coverage_message(hazard, frag, total, share, guessed, lower) -> str:
         2.326 * frag.beta)
     where = " and ".join(w for w, s in (("below", share[0]), ("above", share[1]))
                          if s > 0.0005) or "outside"
+    std = standard_g(hazard.units)
     return (f"the hazard curve ({hazard.label} {hazard.x[0] / f:.3g} … "
-            f"{hazard.x[-1] / f:.3g} {hazard.units}) does not cover the fragility (1–99 % "
+            f"{hazard.x[-1] / f:.3g} {hazard.units}{', ' + std if std else ''}) does not cover "
+            f"the fragility (1–99 % "
             f"between {lo / f:.3g} and {hi / f:.3g} {hazard.units}): "
             f"{100 * guessed:.1f} % of lambda_c = {total:.3g}/yr rests on its extrapolation "
             f"{where} it (its end segments as power laws); without extrapolation "

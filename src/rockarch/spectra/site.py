@@ -23,7 +23,7 @@ import numpy as np
 from rockarch import systems
 from rockarch.core import __version__, sweep
 from rockarch.core.console import on_terminal
-from rockarch.core.constants import G_STANDARD, OAS_TOL
+from rockarch.core.constants import G_STANDARD, OAS_TOL, g_label
 from rockarch.core.sweep.limits import check_simulations
 from rockarch.motion.signals import GroundMotion
 from rockarch.motion.suite import (
@@ -78,9 +78,9 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
         path, m = Path(rec.path), rec.motion
         lo, hi = PGA_RANGE
         if not lo <= m.pga <= hi:
-            raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g) is "
-                             "not plausible: wrong units? (text files: --units g, "
-                             "m/s2 or cm/s2)")
+            raise ValueError(f"{path}: PGA = {m.pga:.4g} m/s² ({m.pga / G_STANDARD:.3g} g, "
+                             f"{g_label(G_STANDARD)}) is not plausible: wrong units? (text "
+                             "files: --units g, m/s2 or cm/s2)")
         motions.append(m)
         hashes.append(hashlib.sha256(path.read_bytes()).hexdigest())
     return motions, hashes
