@@ -205,6 +205,32 @@ def test_site_file_records_how_its_records_were_read(single_column, site_file, t
     assert "<td>--units g --dt 0.01</td>" in rep.read_text()
 
 
+def test_both_routes_to_a_site_file_hold_the_records_file_sha256(tmp_path):
+    # site-oas and design --records --save-site on the same record file store the same
+    # SHA-256, that of the file (design stored the samples' before), so check_records and
+    # users compare like with like; a motion without a file keeps its samples' fingerprint
+    d = tmp_path / "records"
+    d.mkdir()
+    m = site.load_records([bundled_record_path(180)])[0][0]
+    f = d / "elc.txt"
+    np.savetxt(f, np.c_[m.t[:300], m.a[:300]])  # 3 s, m/s²
+    digest = hashlib.sha256(f.read_bytes()).hexdigest()
+    a, b = tmp_path / "a.nc", tmp_path / "b.nc"
+    res = runner.invoke(app, ["site-oas", "--records", str(d), "--units", "m/s2", "--p-min",
+                              "2", "--p-max", "4", "--p-steps", "3", "--ratio-steps", "5",
+                              "--no-store", "--out", str(a)])
+    assert res.exit_code == 0, res.output
+    res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
+                              "2.89", "--thickness", "0.35", "--records", str(d), "--units",
+                              "m/s2", "--no-store", "--save-site", str(b)])
+    assert res.exit_code == 0, res.output
+    assert site.load(a)["record_sha256"].values.tolist() == [digest]
+    assert site.load(b)["record_sha256"].values.tolist() == [digest]
+    assert site.check_records(site.load(b), d).names == ["elc.txt"]
+    ds = site.site_oas([m], [2.0], [1.0, 2.0], progress=False)
+    assert ds["record_sha256"].values.tolist() == [m.fingerprint()]
+
+
 def test_older_site_files_read_as_before(single_column, tmp_path):
     # a file written before site files recorded --units and --dt: read as before, the
     # caller's options used where the records are read again

@@ -270,7 +270,7 @@ def site_from_records(suite, *, percentile: float = 50.0, executor=None, store=N
     """The slender-block site OAS of a suite (:func:`rockarch.motion.suite.read_suite`) on
     :data:`DESIGN_P` × :data:`DESIGN_RATIO`, with the characteristic curves added (``log``:
     a line per record done, as in :func:`rockarch.spectra.site.site_oas`)."""
-    ds = site.site_oas(suite.motions, DESIGN_P, DESIGN_RATIO, percentile=percentile,
+    ds = site.site_oas(suite, DESIGN_P, DESIGN_RATIO, percentile=percentile,
                        progress=progress, executor=executor, store=store, log=log)
     ds["record_name"] = (("record",), np.array(suite.names, dtype=str),
                          ds["record_name"].attrs)

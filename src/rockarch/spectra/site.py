@@ -29,6 +29,7 @@ from rockarch.motion.signals import GroundMotion
 from rockarch.motion.suite import (
     PGA_RANGE,
     Suite,
+    SuiteRecord,
     as_motions,
     check_distinct,
     read_suite,
@@ -60,6 +61,26 @@ def record_paths(paths) -> list[Path]:
     return record_files(paths)[0]
 
 
+def record_sha256(rec: SuiteRecord) -> str:
+    """The SHA-256 a site file holds for a record: that of its file, as read from disk (of
+    its samples, :meth:`~rockarch.motion.signals.GroundMotion.fingerprint`, where it has no
+    file, e.g. a motion built in Python).
+
+    Parameters
+    ----------
+    rec : SuiteRecord
+        A record of a :class:`~rockarch.motion.suite.Suite`.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+    """
+    if rec.path:
+        return hashlib.sha256(Path(rec.path).read_bytes()).hexdigest()
+    return rec.motion.fingerprint()
+
+
 def load_records(paths, units: str | None = None, log: Callable[[str], None] | None = None,
                  *, dt: float | None = None) -> tuple[list[GroundMotion], list[str]]:
     """Read the records as a suite (:func:`rockarch.motion.suite.read_suite`: the same folders and
@@ -82,7 +103,7 @@ def load_records(paths, units: str | None = None, log: Callable[[str], None] | N
                              f"{g_label(G_STANDARD)}) is not plausible: wrong units? (text "
                              "files: --units g, m/s2 or cm/s2)")
         motions.append(m)
-        hashes.append(hashlib.sha256(path.read_bytes()).hexdigest())
+        hashes.append(record_sha256(rec))
     return motions, hashes
 
 
@@ -129,6 +150,8 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     The site OAS of the paper's design method (paper Sect. 9).
 
     ``motions``: the records, a :class:`rockarch.motion.suite.Suite` or GroundMotions.
+    ``hashes``: their SHA-256 as the file holds them (default :func:`record_sha256`: a
+    Suite's record files, as ``rockarch site-oas`` writes them; a GroundMotion's samples).
 
     The structure is the slender block of slenderness ``alpha`` (the paper's site OAS), or
     ``system``, any :func:`rockarch.systems.system`: a block gives the same file as by
@@ -143,6 +166,8 @@ def site_oas(motions: list[GroundMotion], p, ratio, *, alpha: float = ALPHA,
     executor serves every record: a pool or cluster starts once).
     ``log`` (e.g. ``print`` where no progress bar is shown) gets a line per record done.
     """
+    if hashes is None and isinstance(motions, Suite):
+        hashes = [record_sha256(rec) for rec in motions]
     motions, _ = as_motions(motions, what="motions")
     if not motions:
         raise ValueError("a site OAS needs at least one record")
@@ -346,8 +371,9 @@ def check_records(ds: xr.Dataset, sources, *, units: str | None = None,
     they are the ones it was computed from.
 
     Each record of ``ds`` is found among ``sources`` by its SHA-256 (of the file, as
-    ``rockarch site-oas`` writes it, or of its samples) and must have the PGA the file
-    holds.
+    ``rockarch site-oas`` and ``rockarch design --save-site`` write it, :func:`record_sha256`;
+    or of its samples, as files of ``design --save-site`` held before) and must have the PGA
+    the file holds.
 
     Parameters
     ----------
@@ -382,8 +408,7 @@ def check_records(ds: xr.Dataset, sources, *, units: str | None = None,
                              f"{_read_as(recorded)} (leave --{key} out: the file says how)")
     opts = recorded or given
     suite = read_suite(sources, **opts)
-    found = [(hashlib.sha256(Path(r.path).read_bytes()).hexdigest() if r.path else None,
-              r.motion.fingerprint(), r) for r in suite]
+    found = [(record_sha256(r), r.motion.fingerprint(), r) for r in suite]
     out = []
     for name, digest, pga in zip(ds["record_name"].values, ds["record_sha256"].values,
                                  ds["record_pga"].values, strict=True):
