@@ -9,7 +9,8 @@ subclass carrying the kind's own time histories); many simulations of one motion
   reached delta; MDOF: the frozen-configuration collapse test of docs/mdof.md);
 - ``t_overturn``: when [s], None if safe;
 - ``max_rotation_ratio``: the largest rotation over its overturning value (theta/alpha,
-  u/delta, or the MDOF reference rotation over delta), 1 at collapse;
+  u/delta, or an assembly's largest block rotation over delta_ref): 1 at collapse for a
+  block or a mechanism, as a rule above 1 for an overturned assembly (:class:`Response`);
 - ``impacts``: the number of impacts.
 """
 
@@ -47,9 +48,15 @@ class Response:
         sample) [s]; None if the structure did not collapse.
     max_rotation_ratio : float
         Largest rotation over the rotation at which the structure overturns [-]:
-        max |theta|/alpha for a block, max |u|/delta for an SDOF mechanism, the MDOF
-        reference rotation over delta_ref for an assembly. 1 at collapse; a value below 1
-        tells how close a safe run came.
+        max |theta|/alpha for a block, max |u|/delta for an SDOF mechanism, the largest
+        block rotation over delta_ref for an assembly. Exactly 1 at collapse for a block or
+        an SDOF mechanism, not for an assembly: its collapse test (docs/mdof.md) runs only
+        every ``CHECK_EVERY`` = 4 steps (:mod:`rockarch.mdof.chain_stepper`, once a block
+        has turned by 0.5·delta_ref), and its blocks turn by other angles than the
+        reference part, in a mechanism that need not be the reference one; so an
+        overturned assembly's ratio overshoots 1 (1.45 in README.md's ``simulate mdof``
+        example), and a safe one's may pass 1 too. Below 1 it tells how close a safe run
+        came.
     impacts : int
         Number of impacts (a block or mechanism returning to its rest position, an MDOF
         joint closing).
