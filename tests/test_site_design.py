@@ -320,3 +320,17 @@ def test_report_command_writes_flags_as_flags():
 
     cmd = _command_line({"no_store": True, "system": "mdof", "column": "0.4,1.0"})
     assert "--no-store" in cmd.split() and "True" not in cmd.split()
+
+
+def test_system_report_names_a_record_without_a_file_by_its_samples(clips):
+    """A record built in Python has no file: the report gives its samples' SHA-256 (as a
+    site file does, site.record_sha256), not an empty cell."""
+    from rockarch.motion.suite import Suite, SuiteRecord
+    from rockarch.output.report import system_report_html
+
+    sys_ = ra.system("block", alpha=0.1, p=2.0)
+    d = ra.design_system(sys_, records=clips, ratio=RATIO, tol=TOL, n_bootstrap=0)
+    suite = Suite(tuple(SuiteRecord(m.name, m) for m in clips))
+    html = system_report_html(d, command="rockarch design ...", suite=suite)
+    for m in clips:
+        assert m.fingerprint() in html

@@ -17,7 +17,7 @@ from rockarch.design import DesignResult, SystemDesign
 from rockarch.output.arch_plots import design_arch_figure
 from rockarch.output.figures import new_figure
 from rockarch.output.html import escape, inline_figure, key_value_table, page, stamp, table
-from rockarch.spectra.site import read_with
+from rockarch.spectra.site import read_with, record_sha256
 
 ASSUMPTIONS = [
     "The arch is replaced by a catenary arch carrying its own mass (paper Sect. 4 and 8), on "
@@ -241,7 +241,7 @@ ap,min = {r.ap_min:.4f} m/s²{escape(slide)}.
         body += "<h2>Records</h2>\n" + table(
             ["record", f"PGA [{g_label(G_STANDARD)}]", "read with", "SHA-256 of the file"],
             [(rec.name, f"{rec.motion.pga / G_STANDARD:.4f}", read_as(*read_with(rec.motion)),
-              hashlib.sha256(Path(rec.path).read_bytes()).hexdigest() if rec.path else "")
+              record_sha256(rec))
              for rec in suite])
     body += f"""<h2>Assumptions</h2>
 <ol>{''.join(f'<li>{escape(a)}</li>' for a in SYSTEM_ASSUMPTIONS[r.method])}</ol>
