@@ -1,8 +1,10 @@
 """Replacement catenary arch, site OAS and the design check (issue 6, paper Sect. 8–9)."""
 
 import hashlib
+import html
 import json
 import re
+import shlex
 
 import numpy as np
 import pytest
@@ -220,10 +222,22 @@ def test_both_routes_to_a_site_file_hold_the_records_file_sha256(tmp_path):
                               "2", "--p-max", "4", "--p-steps", "3", "--ratio-steps", "5",
                               "--no-store", "--out", str(a)])
     assert res.exit_code == 0, res.output
+    rep = tmp_path / "r.html"
     res = runner.invoke(app, ["design", "--shape", "circular", "--span", "10", "--rise",
                               "2.89", "--thickness", "0.35", "--records", str(d), "--units",
-                              "m/s2", "--no-store", "--save-site", str(b)])
+                              "m/s2", "--no-store", "--save-site", str(b), "--curve",
+                              "characteristic", "--percentile", "84", "--g", "9.81",
+                              "--report", str(rep)])
     assert res.exit_code == 0, res.output
+    # the report's rerun command holds every option given (--percentile was dropped, and
+    # the rerun read the median), --g too although 9.81 is its default; it reruns the check
+    cmd = re.search(r"<code>(rockarch design [^<]*)</code>", rep.read_text()).group(1)
+    words = shlex.split(html.unescape(cmd))
+    for opt in ("--percentile", "--units", "--curve", "--g", "--save-site"):
+        assert opt in words, cmd
+    again = runner.invoke(app, words[1:])
+    assert again.exit_code == 0, again.output
+    assert again.stdout == res.stdout.replace(f"wrote {rep}\n", "")
     assert site.load(a)["record_sha256"].values.tolist() == [digest]
     assert site.load(b)["record_sha256"].values.tolist() == [digest]
     assert site.check_records(site.load(b), d).names == ["elc.txt"]

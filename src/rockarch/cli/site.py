@@ -287,16 +287,8 @@ def design(
             risk = replace(risk, thickness=d, trials=trials)
         extra["risk"] = risk.to_dict()
     if report is not None:
-        cmd = (f"rockarch design --shape {shape.value} --span {span:g} --rise {rise:g} "
-               f"--thickness {thickness:g} "
-               + (f"--site {site_file}" if site_file else
-                  " ".join(f"--records {r}" for r in records))
-               + "".join(f" --{k} {v}" for k, v in (("units", units), ("dt", dt))
-                         if v is not None)
-               + f" --thickness-rule {thickness_rule} --curve {curve} --replacement-axis "
-               f"{replacement_axis} --replacement-mass {replacement_mass} --g {g:g}")
         from rockarch.output.report import write_report
-        write_report(res, site_ds, report, command=cmd,
+        write_report(res, site_ds, report, command=_command_line(args),
                      site_path=str(site_file) if site_file else None, extra_html=html_extra,
                      caveats=caveats,
                      inputs={"shape": shape.value, "span [m]": span, "rise [m]": rise,
@@ -484,15 +476,17 @@ def _design_system(opt: dict, records: list[Path], json_out: bool) -> None:
 
 
 def _command_line(opt: dict) -> str:
-    """The command with the options given (those that differ from their default), as the
-    report's way to rerun it."""
+    """The command as the report's way to rerun it: every option given on the command line
+    (at its default value too) and every other one whose value differs from its default."""
     import shlex
 
     words = ["rockarch", "design"]
     command = typer.main.get_command(app).get_command(None, "design")
+    ctx = opt.get("ctx")
     for prm in command.params:
         v = opt.get(prm.name)
-        if v is None or v == prm.default or prm.name in ("report", "json_out") or v == []:
+        if (v is None or v == [] or prm.name in ("report", "json_out")
+                or (v == prm.default and not (ctx is not None and typed(ctx, prm.name)))):
             continue
         if getattr(prm, "is_flag", False):  # typer's options need not be click's class
             if v or prm.secondary_opts:
